@@ -1,0 +1,17 @@
+# Debian's libtrilinos-kokkos-dev exports an include directory that does not hold the
+# headers; add the real one when the exported one lacks Kokkos_Core.hpp.
+function(eulerfsi_kokkos_fixups target)
+  get_target_property(_inc Kokkos::kokkos INTERFACE_INCLUDE_DIRECTORIES)
+  set(_found FALSE)
+  foreach(_d IN LISTS _inc)
+    if(EXISTS "${_d}/Kokkos_Core.hpp")
+      set(_found TRUE)
+    endif()
+  endforeach()
+  if(NOT _found)
+    find_path(EULERFSI_KOKKOS_INCLUDE Kokkos_Core.hpp PATH_SUFFIXES trilinos kokkos)
+    if(EULERFSI_KOKKOS_INCLUDE)
+      target_include_directories(${target} PUBLIC ${EULERFSI_KOKKOS_INCLUDE})
+    endif()
+  endif()
+endfunction()

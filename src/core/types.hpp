@@ -1,0 +1,39 @@
+#pragma once
+// Field storage and iteration policies shared by kernels and driver.
+#include <Kokkos_Core.hpp>
+
+namespace eulerfsi {
+
+using ExecSpace = Kokkos::DefaultExecutionSpace;
+using MemSpace = ExecSpace::memory_space;
+
+// A scalar field on the local slab with ghost layers; k (z) is contiguous on every backend.
+using Field3 = Kokkos::View<double***, Kokkos::LayoutRight, MemSpace>;
+using ConstField3 = Kokkos::View<const double***, Kokkos::LayoutRight, MemSpace>;
+using HostField3 = Field3::HostMirror;
+using Line = Kokkos::View<double*, MemSpace>;
+
+// The same iteration order on CPU and GPU: k fastest.
+using Policy3 = Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3, Kokkos::Iterate::Right, Kokkos::Iterate::Right>>;
+using Policy2 = Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2, Kokkos::Iterate::Right, Kokkos::Iterate::Right>>;
+
+// Ghost layers on every side: WENO5 reads three cells upwind.
+constexpr int kGhost = 3;
+
+// Index box [lo, hi) in storage indices (ghosts included in the numbering).
+struct Box {
+  int lo[3];
+  int hi[3];
+  Policy3 policy() const {
+    // an empty range must be clamped: Kokkos 4.3+ aborts on hi < lo
+    return Policy3({lo[0], lo[1], lo[2]},
+                   {hi[0] > lo[0] ? hi[0] : lo[0], hi[1] > lo[1] ? hi[1] : lo[1], hi[2] > lo[2] ? hi[2] : lo[2]});
+  }
+  long size() const {
+    long n = 1;
+    for (int d = 0; d < 3; ++d) n *= (hi[d] > lo[d] ? hi[d] - lo[d] : 0);
+    return n;
+  }
+};
+
+}  // namespace eulerfsi
