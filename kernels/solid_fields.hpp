@@ -1,0 +1,23 @@
+#pragma once
+// Storage of one soft body: the solid volume fraction psi and the left Cauchy-Green tensor B
+// (the paper's xi), six independent components, all at cell centres.
+#include "core/types.hpp"
+
+namespace eulerfsi::kernels {
+
+// Component order of the symmetric tensor B.
+enum TensorComponent : int { XX = 0, YY = 1, ZZ = 2, XY = 3, XZ = 4, YZ = 5 };
+constexpr int kTensorComponents = 6;
+
+// (row, column) -> storage component, for writing sums over indices.
+KOKKOS_INLINE_FUNCTION int tensor_index(int a, int b) {
+  if (a == b) return a;
+  const int lo = a < b ? a : b, hi = a < b ? b : a;
+  return lo == 0 ? (hi == 1 ? XY : XZ) : YZ;
+}
+
+struct Tensor6 {
+  Field3 c[kTensorComponents];
+};
+
+}  // namespace eulerfsi::kernels

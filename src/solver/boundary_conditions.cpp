@@ -1,0 +1,48 @@
+#include "solver/boundary_conditions.hpp"
+
+#include <cmath>
+
+#include "kernels/boundary.hpp"
+#include "parallel/halo.hpp"
+
+namespace eulerfsi {
+
+using kernels::GhostRule;
+
+BoundaryConditions::BoundaryConditions(const CaseConfig& cfg, const Grid& grid, MPI_Comm comm)
+    : grid_(grid), comm_(comm), wall_u_{cfg.flow.wall_velocity[0], cfg.flow.wall_velocity[1]},
+      wall_frequency_(cfg.flow.wall_frequency) {}
+
+WallVelocity BoundaryConditions::walls_at(double t) const {
+  const double s = wall_frequency_ > 0.0 ? std::sin(wall_frequency_ * t) : 1.0;
+  return {wall_u_[0] * s, wall_u_[1] * s};
+}
+
+void BoundaryConditions::fill_velocity(const kernels::Velocity& vel, double t) const {
+  for (int c = 0; c < 3; ++c) exchange_x(vel.c[c], grid_, comm_);
+  const WallVelocity walls = walls_at(t);
+  for (int dir = 1; dir <= 2; ++dir) {
+    for (int c = 0; c < 3; ++c) {
+      if (grid_.bc[dir] == Boundary::Periodic) {
+        kernels::fill_ghosts(vel.c[c], dir, grid_.n[dir], GhostRule::Periodic, 0.0, 0.0);
+      } else if (c == dir) {
+        kernels::fill_ghosts(vel.c[c], dir, grid_.n[dir], GhostRule::Normal, 0.0, 0.0);
+      } else {
+        // only u on the y walls moves (Couette); everything else is no-slip on fixed walls
+        const bool moving = (c == 0 && dir == 1);
+        kernels::fill_ghosts(vel.c[c], dir, grid_.n[dir], GhostRule::Tangent, moving ? walls.u_lo : 0.0,
+                             moving ? walls.u_hi : 0.0);
+      }
+    }
+  }
+}
+
+void BoundaryConditions::fill_scalar(const Field3& f) const {
+  exchange_x(f, grid_, comm_);
+  for (int dir = 1; dir <= 2; ++dir) {
+    const GhostRule rule = grid_.bc[dir] == Boundary::Periodic ? GhostRule::Periodic : GhostRule::Even;
+    kernels::fill_ghosts(f, dir, grid_.n[dir], rule, 0.0, 0.0);
+  }
+}
+
+}  // namespace eulerfsi

@@ -1,0 +1,33 @@
+#pragma once
+// Ghost layers of every field: x by the periodic halo exchange across ranks, then y and z by
+// the geometry's rule (periodic, or no-slip walls possibly moving in x).
+#include <mpi.h>
+
+#include "config/case_config.hpp"
+#include "grid/grid.hpp"
+#include "solver/flow_state.hpp"
+
+namespace eulerfsi {
+
+struct WallVelocity {
+  double u_lo = 0.0;  // x-velocity of the wall at y = -Ly/2
+  double u_hi = 0.0;  // x-velocity of the wall at y = +Ly/2
+};
+
+class BoundaryConditions {
+ public:
+  BoundaryConditions(const CaseConfig& cfg, const Grid& grid, MPI_Comm comm);
+  // Moving-wall velocity at time t (Couette, optionally oscillating).
+  WallVelocity walls_at(double t) const;
+  void fill_velocity(const kernels::Velocity& vel, double t) const;
+  // Cell-centred scalar with zero normal gradient at walls (pressure, psi, B components).
+  void fill_scalar(const Field3& f) const;
+
+ private:
+  Grid grid_;
+  MPI_Comm comm_;
+  double wall_u_[2];
+  double wall_frequency_;
+};
+
+}  // namespace eulerfsi

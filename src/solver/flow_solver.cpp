@@ -1,0 +1,150 @@
+#include "solver/flow_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "kernels/flow_reductions.hpp"
+#include "kernels/momentum.hpp"
+#include "kernels/projection.hpp"
+#include "kernels/time_update.hpp"
+#include "solid/solid_phase.hpp"
+#include "solver/initial_conditions.hpp"
+
+namespace eulerfsi {
+
+FlowSolver::FlowSolver(const CaseConfig& cfg, const Grid& grid, const Comm& comm)
+    : cfg_(cfg), grid_(grid), comm_(comm), bc_(cfg, grid, comm.comm), state_(grid),
+      rhs_new_{{grid.make_field("rhs_u"), grid.make_field("rhs_v"), grid.make_field("rhs_w")}},
+      rhs_old_{{grid.make_field("rhs_u_old"), grid.make_field("rhs_v_old"), grid.make_field("rhs_w_old")}},
+      mu_(grid.make_field("mu")), poisson_(make_poisson_solver(grid, comm.comm)), mu_fluid_(1.0 / cfg.flow.Re) {
+  const Geometry geo = cfg.domain.geometry;
+  impose_flow_rate_ = geo == Geometry::Pipe || geo == Geometry::Duct || geo == Geometry::Channel;
+  Kokkos::deep_copy(mu_, mu_fluid_);
+  build_wall_masks();
+  // the open cross-section never changes: count its x-faces once
+  Field3 ones = grid.make_field("ones");
+  Kokkos::deep_copy(ones, 1.0);
+  open_faces_ = comm_.sum(kernels::open_face_sum(ones, masks_.chi[0], grid_.interior()));
+}
+
+FlowSolver::~FlowSolver() = default;
+
+// chi = 1 outside the pipe (r >= R = 1/2) at each component's own staggered point.
+void FlowSolver::build_wall_masks() {
+  if (cfg_.domain.geometry != Geometry::Pipe) return;
+  const int e1 = grid_.ext(1), e2 = grid_.ext(2);
+  const double y0 = grid_.domain_lo(1), z0 = grid_.domain_lo(2), dy = grid_.h[1], dz = grid_.h[2];
+  for (int c = 0; c < 3; ++c) {
+    masks_.chi[c] = kernels::Mask2("chi", e1, e2);
+    auto chi = masks_.chi[c];
+    const double sy = c == 1 ? 1.0 : 0.5, sz = c == 2 ? 1.0 : 0.5;  // face or centre offset
+    Kokkos::parallel_for("eulerfsi::penalization::mask", Policy2({0, 0}, {e1, e2}), KOKKOS_LAMBDA(int j, int k) {
+      const double y = y0 + (j - kGhost + sy) * dy;
+      const double z = z0 + (k - kGhost + sz) * dz;
+      chi(j, k) = (y * y + z * z >= 0.25) ? 1.0 : 0.0;
+    });
+  }
+}
+
+void FlowSolver::set_initial_condition() {
+  fill_initial_velocity(cfg_, grid_, state_.vel);
+  Kokkos::deep_copy(state_.p, 0.0);
+  bc_.fill_velocity(state_.vel, 0.0);
+  // start exactly solenoidal (the sampled profile or a penalized mask may not be)
+  project(1.0, 0.0);
+  if (impose_flow_rate_) correct_flow_rate();
+  bc_.fill_velocity(state_.vel, 0.0);
+  Kokkos::deep_copy(state_.p, 0.0);
+  if (impose_flow_rate_) {
+    // start from the laminar pressure gradient so the first dp/dx row is meaningful
+    dpdx_ = 0.0;
+  }
+}
+
+double FlowSolver::stable_dt(double extra_wave_speed) const {
+  const auto& u = state_.vel.c;
+  const double rate = comm_.max(kernels::max_signal_rate(u[0], u[1], u[2], grid_.h, extra_wave_speed, grid_.interior()));
+  const double dt_conv = rate > 0.0 ? cfg_.time.cfl / rate : 1e300;
+  // RK3 is stable on the negative real axis to 2.51; 1.65 keeps a margin (as CaNS does)
+  double inv_h2 = 0.0;
+  for (int d = 0; d < 3; ++d) inv_h2 += 1.0 / (grid_.h[d] * grid_.h[d]);
+  double mu_max = mu_fluid_;
+  for (const auto& s : cfg_.solids) mu_max = std::max(mu_max, s.viscosity_ratio * mu_fluid_);
+  const double dt_visc = 1.65 / (4.0 * mu_max * inv_h2);
+  return std::min(dt_conv, dt_visc);
+}
+
+void FlowSolver::advance(double t, double dt, SolidPhase* solids) {
+  const Box box = grid_.interior();
+  auto& vel = state_.vel;
+  double dpdx_step = 0.0;
+  for (int s = 0; s < Rk3::stages; ++s) {
+    const double gamma = Rk3::gamma[s], zeta = Rk3::zeta[s], alpha_dt = Rk3::alpha(s) * dt;
+    const double t_next = t + (s + 1 < Rk3::stages ? Rk3::start(s + 1) : 1.0) * dt;
+    // (i) advance psi and B with the current velocity; mixture viscosity from the new psi
+    if (solids) {
+      solids->advance_substep(vel, dt, s);
+      solids->mixture_viscosity(mu_, mu_fluid_);
+    }
+    // (ii) explicit momentum right-hand side: advection + viscous (+ elastic stress)
+    kernels::momentum_rhs(rhs_new_, vel, mu_, grid_.h, box);
+    if (solids) solids->add_elastic_force(rhs_new_);
+    // (iii) predictor with implicit penalization of the pipe wall
+    const double penal = alpha_dt / cfg_.flow.penalization_eta;
+    static const char* labels[3] = {"eulerfsi::rk3::update_u", "eulerfsi::rk3::update_v", "eulerfsi::rk3::update_w"};
+    for (int c = 0; c < 3; ++c) {
+      kernels::rk3_update(vel.c[c], rhs_new_.c[c], rhs_old_.c[c], masks_.chi[c], dt, gamma, zeta, penal, box, labels[c]);
+      std::swap(rhs_new_.c[c], rhs_old_.c[c]);
+    }
+    bc_.fill_velocity(vel, t_next);
+    // (iv) projection
+    project(alpha_dt, t_next);
+    // (v) constant flow rate: the uniform correction is the mean pressure gradient times alpha dt
+    if (impose_flow_rate_) {
+      const double du = correct_flow_rate();
+      dpdx_step -= du / dt;
+      bc_.fill_velocity(vel, t_next);
+    }
+  }
+  if (impose_flow_rate_) dpdx_ = dpdx_step;
+}
+
+void FlowSolver::project(double alpha_dt, double t_next) {
+  const Box box = grid_.interior();
+  auto& vel = state_.vel;
+  kernels::divergence(state_.p, vel.c[0], vel.c[1], vel.c[2], grid_.h, 1.0 / alpha_dt, box);
+  poisson_->solve(state_.p);
+  bc_.fill_scalar(state_.p);
+  kernels::subtract_gradient(vel.c[0], vel.c[1], vel.c[2], state_.p, grid_.h, alpha_dt, box);
+  bc_.fill_velocity(vel, t_next);
+}
+
+// Adds du to u on the open faces so the bulk velocity is U_b again; returns du.
+double FlowSolver::correct_flow_rate() {
+  const double bulk = bulk_velocity();
+  const double du = cfg_.flow.bulk_velocity - bulk;
+  kernels::add_open_x_velocity(state_.vel.c[0], masks_.chi[0], du, grid_.interior());
+  return du;
+}
+
+double FlowSolver::bulk_velocity() const {
+  return comm_.sum(kernels::open_face_sum(state_.vel.c[0], masks_.chi[0], grid_.interior())) / open_faces_;
+}
+
+FlowDiagnostics FlowSolver::diagnostics(double dt) const {
+  const Box box = grid_.interior();
+  const auto& u = state_.vel.c;
+  FlowDiagnostics d;
+  d.cfl = dt * comm_.max(kernels::max_signal_rate(u[0], u[1], u[2], grid_.h, 0.0, box));
+  d.bulk_u = bulk_velocity();
+  d.dpdx = dpdx_;
+  d.max_div = comm_.max(kernels::max_abs_divergence(u[0], u[1], u[2], grid_.h, box));
+  d.kinetic_energy = comm_.sum(kernels::kinetic_energy_sum(u[0], u[1], u[2], box)) / double(grid_.global_cells());
+  bool ok = true;
+  for (int c = 0; c < 3; ++c) ok = ok && kernels::all_finite(u[c], box);
+  d.finite = !comm_.any(!ok);
+  return d;
+}
+
+}  // namespace eulerfsi
