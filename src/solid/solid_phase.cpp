@@ -1,0 +1,123 @@
+#include "solid/solid_phase.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "core/compat.hpp"
+#include "kernels/elastic_force.hpp"
+#include "kernels/solid_transport.hpp"
+
+namespace eulerfsi {
+
+namespace {
+
+// B outside the solid is reset to I below this volume fraction (it is multiplied by psi there).
+constexpr double kPsiReset = 1e-6;
+// Sub-samples per direction for the initial cell volume fraction: error ~ 1/n^2 of a surface cell.
+constexpr int kSubsamples = 8;
+
+kernels::Tensor6 make_tensor(const Grid& g, const char* label) {
+  kernels::Tensor6 t;
+  for (int c = 0; c < kernels::kTensorComponents; ++c) t.c[c] = g.make_field(label);
+  return t;
+}
+
+void set_identity(const kernels::Tensor6& b) {
+  for (int c = 0; c < kernels::kTensorComponents; ++c) Kokkos::deep_copy(b.c[c], c < 3 ? 1.0 : 0.0);
+}
+
+// psi = fraction of kSubsamples^3 points of each cell inside the body (sphere: minimum image in x).
+void fill_volume_fraction(const Field3& psi, const Grid& g, const SolidConfig& s) {
+  const double hx = g.h[0], hy = g.h[1], hz = g.h[2], lx = g.length[0];
+  const double y0 = g.domain_lo(1), z0 = g.domain_lo(2);
+  const int x_off = g.x_offset;
+  const bool sphere = s.shape == SolidShape::Sphere;
+  const double cx = s.center[0], cy = s.center[1], cz = s.center[2], r = 0.5 * s.diameter;
+  const double top = y0 + s.thickness;
+  const int n = kSubsamples;
+  Kokkos::parallel_for("eulerfsi::solid::volume_fraction", g.all().policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+    int inside = 0;
+    for (int a = 0; a < n; ++a)
+      for (int b = 0; b < n; ++b)
+        for (int c = 0; c < n; ++c) {
+          const double x = (i - kGhost + x_off + (a + 0.5) / n) * hx;
+          const double y = y0 + (j - kGhost + (b + 0.5) / n) * hy;
+          const double z = z0 + (k - kGhost + (c + 0.5) / n) * hz;
+          if (sphere) {
+            double dx = x - cx;
+            dx -= lx * compat::floor(dx / lx + 0.5);  // nearest periodic image
+            inside += (dx * dx + (y - cy) * (y - cy) + (z - cz) * (z - cz) < r * r) ? 1 : 0;
+          } else {
+            inside += (y < top) ? 1 : 0;
+          }
+        }
+    psi(i, j, k) = double(inside) / double(n * n * n);
+  });
+}
+
+}  // namespace
+
+SolidPhase::SolidPhase(const CaseConfig& cfg, const Grid& grid, const BoundaryConditions& bc, const Comm& comm)
+    : cfg_(cfg), grid_(grid), bc_(&bc), comm_(comm) {
+  for (const auto& s : cfg.solids) {
+    SolidBody body;
+    body.cfg = s;
+    body.G = 1.0 / s.We;
+    body.mu_s = s.viscosity_ratio / cfg.flow.Re;
+    body.psi = grid.make_field("psi");
+    body.b = make_tensor(grid, "B");
+    body.b_prev = make_tensor(grid, "B_prev");
+    body.psi_rhs_old = grid.make_field("psi_rhs_old");
+    body.b_rhs_old = make_tensor(grid, "B_rhs_old");
+    body.psi_rhs = grid.make_field("psi_rhs");
+    body.b_rhs = make_tensor(grid, "B_rhs");
+    bodies_.push_back(std::move(body));
+  }
+}
+
+void SolidPhase::set_initial_condition() {
+  for (auto& body : bodies_) {
+    fill_volume_fraction(body.psi, grid_, body.cfg);
+    set_identity(body.b);
+    set_identity(body.b_prev);
+  }
+}
+
+void SolidPhase::advance_substep(const kernels::Velocity& vel, double dt, int substep) {
+  static constexpr double gamma[3] = {8.0 / 15.0, 5.0 / 12.0, 3.0 / 4.0};
+  static constexpr double zeta[3] = {0.0, -17.0 / 60.0, -5.0 / 12.0};
+  const Box box = grid_.interior();
+  for (auto& body : bodies_) {
+    // d psi/dt = -div(u psi);  dB/dt = -div(u B) + L B + B L^T   (WENO5 fluxes, RK3)
+    kernels::scalar_advection_rhs(body.psi_rhs, body.psi, vel, grid_.h, box);
+    kernels::tensor_transport_rhs(body.b_rhs, body.b, vel, grid_.h, box);
+    for (int c = 0; c < kernels::kTensorComponents; ++c) Kokkos::deep_copy(body.b_prev.c[c], body.b.c[c]);
+    kernels::rk3_scalar_update(body.psi, body.psi_rhs, body.psi_rhs_old, dt, gamma[substep], zeta[substep], box);
+    kernels::rk3_tensor_update(body.b, body.b_rhs, body.b_rhs_old, dt, gamma[substep], zeta[substep], box);
+    std::swap(body.psi_rhs, body.psi_rhs_old);
+    std::swap(body.b_rhs, body.b_rhs_old);
+    kernels::clip_volume_fraction(body.psi, box);
+    kernels::reset_tensor_outside(body.b, body.psi, kPsiReset, box);
+    bc_->fill_scalar(body.psi);
+    for (int c = 0; c < kernels::kTensorComponents; ++c) bc_->fill_scalar(body.b.c[c]);
+  }
+}
+
+void SolidPhase::mixture_viscosity(const Field3& mu, double mu_fluid) const {
+  Kokkos::deep_copy(mu, mu_fluid);
+  for (const auto& body : bodies_) kernels::mixture_viscosity_add(mu, body.psi, body.mu_s - mu_fluid, grid_.all());
+}
+
+void SolidPhase::add_elastic_force(const kernels::Velocity& rhs) const {
+  for (const auto& body : bodies_)
+    kernels::add_elastic_force(rhs, body.psi, body.b, body.b_prev, body.G, grid_.h, grid_.interior());
+}
+
+double SolidPhase::max_wave_speed() const {
+  double c = 0.0;
+  for (const auto& body : bodies_) c = std::max(c, std::sqrt(body.G));
+  return c;
+}
+
+}  // namespace eulerfsi
