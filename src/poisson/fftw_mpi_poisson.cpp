@@ -24,7 +24,7 @@ void ensure_fftw_mpi_init() {
 // directly; wall (REDFT10) theta = pi m / N. 2(cos theta - 1) = -4 sin^2(theta/2), written
 // the second way to avoid cancellation for the small modes that dominate phi.
 Kokkos::View<double*, Kokkos::HostSpace> eigenvalues(int n, double h, Boundary bc, const char* label) {
-  Kokkos::View<double*, Kokkos::HostSpace> lam(label, n);
+  Kokkos::View<double*, Kokkos::HostSpace> lam(std::string(label), n);  // Kokkos 3.4 rejects const char* labels
   const double pi = 3.14159265358979323846;
   for (int m = 0; m < n; ++m) {
     const double theta = (bc == Boundary::Periodic ? 2.0 * pi : pi) * m / n;
@@ -67,8 +67,10 @@ FftwMpiPoisson::FftwMpiPoisson(const Grid& grid, MPI_Comm comm, Planning plannin
     scale_ /= periodic ? double(n_[d]) : 2.0 * n_[d];
   }
   const unsigned effort = planning == Planning::Measure ? FFTW_MEASURE : FFTW_ESTIMATE;
-  forward_ = fftw_mpi_plan_r2r_3d(n_[0], n_[1], n_[2], buf_, buf_, comm, fwd, effort | FFTW_MPI_TRANSPOSED_OUT);
-  backward_ = fftw_mpi_plan_r2r_3d(n_[0], n_[1], n_[2], buf_, buf_, comm, bwd, effort | FFTW_MPI_TRANSPOSED_IN);
+  forward_ = fftw_mpi_plan_r2r_3d(n_[0], n_[1], n_[2], buf_, buf_, comm, fwd[0], fwd[1], fwd[2],
+                                  effort | FFTW_MPI_TRANSPOSED_OUT);
+  backward_ = fftw_mpi_plan_r2r_3d(n_[0], n_[1], n_[2], buf_, buf_, comm, bwd[0], bwd[1], bwd[2],
+                                   effort | FFTW_MPI_TRANSPOSED_IN);
   if (!forward_ || !backward_) {
     if (forward_) fftw_destroy_plan(forward_);
     if (backward_) fftw_destroy_plan(backward_);
