@@ -1,0 +1,18 @@
+#pragma once
+// Ghost exchange across the x-slab decomposition.
+#include <mpi.h>
+
+#include "core/types.hpp"
+#include "grid/grid.hpp"
+
+namespace eulerfsi {
+
+// Fills the kGhost x-ghost planes on both sides of f from the periodic x-neighbours
+// (rank-1 and rank+1 modulo the rank count; one rank sends to itself). Whole planes travel,
+// y/z ghosts included, so edges and corners are right once y/z ghosts were filled before.
+// Fences first: pending kernels that write f must finish before MPI reads it.
+// f must be a full field of g (extent(0) == nx_local + 2 kGhost), contiguous.
+// Device memory is staged through host buffers unless EULERFSI_GPU_AWARE_MPI is defined.
+void exchange_x(Field3 f, const Grid& g, MPI_Comm comm);
+
+}  // namespace eulerfsi

@@ -1,0 +1,31 @@
+#pragma once
+// The pressure Poisson solve behind one small interface, so a cuFFT/hipFFT backend can
+// replace FFTW without touching the time stepper.
+#include <mpi.h>
+
+#include <memory>
+
+#include "core/types.hpp"
+#include "grid/grid.hpp"
+
+namespace eulerfsi {
+
+// Solves L_h phi = f exactly (to round-off), L_h the 7-point Laplacian on cell centres:
+//   sum_d (phi(i+e_d) - 2 phi(i) + phi(i-e_d)) / h_d^2,
+// periodic in x; in y and z periodic or homogeneous Neumann with the ghost convention
+// phi(-1) = phi(0), phi(n) = phi(n-1) (the wall lies between cell 0 and its ghost).
+// The mean of f over all cells is removed (the compatibility condition of the periodic /
+// Neumann problem) and phi is returned with zero mean (the zero mode is fixed to 0).
+class PoissonSolver {
+ public:
+  virtual ~PoissonSolver();
+  // Reads f from the interior (storage indices kGhost .. kGhost+n-1) of rhs_phi and overwrites
+  // that interior with phi. Ghosts are neither read nor filled: the caller fills them.
+  virtual void solve(Field3 rhs_phi) = 0;
+  virtual const char* name() const = 0;
+};
+
+// The best solver available for this build (today: FFTW-MPI on x-slabs).
+std::unique_ptr<PoissonSolver> make_poisson_solver(const Grid& grid, MPI_Comm comm);
+
+}  // namespace eulerfsi
