@@ -6,6 +6,8 @@
 // on the "plus" side of their cell: u(i,j,k) at x = (i+1) dx, v(i,j,k) at
 // y = -Ly/2 + (j+1) dy, w(i,j,k) at z = -Lz/2 + (k+1) dz.
 // Storage index = local index + kGhost in every direction.
+#include <string>
+
 #include "core/types.hpp"
 
 namespace eulerfsi {
@@ -40,7 +42,8 @@ struct Grid {
     const int g = s - kGhost + (d == 0 ? x_offset : 0);
     return domain_lo(d) + (g + 0.5) * h[d];
   }
-  Field3 make_field(const char* label) const { return Field3(label, ext(0), ext(1), ext(2)); }
+  // Kokkos 3.4 accepts std::string labels but not const char*.
+  Field3 make_field(const char* label) const { return Field3(std::string(label), ext(0), ext(1), ext(2)); }
 };
 
 }  // namespace eulerfsi
