@@ -80,5 +80,7 @@ std::string to_toml(const CaseConfig& cfg);
 
 const char* to_string(Geometry g);
 const char* to_string(InitialFlow f);
+const char* to_string(SolidShape s);
+const char* to_string(InitialSolidVelocity v);
 
 }  // namespace eulerfsi
