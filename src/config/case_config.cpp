@@ -6,6 +6,7 @@
 #include <charconv>
 #include <climits>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -73,14 +74,41 @@ std::string fmt_double(double x) {
   return s;
 }
 
+// A TOML basic string: double quotes, with backslash escapes for quotes and control characters.
 std::string toml_str(const std::string& s) {
-  std::ostringstream os;
-  os << toml::value<std::string>(s);  // toml++ escapes exactly as TOML needs
-  return os.str();
+  std::string out = "\"";
+  for (const char ch : s) {
+    const auto c = static_cast<unsigned char>(ch);
+    switch (ch) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '\t': out += "\\t"; break;
+      case '\r': out += "\\r"; break;
+      default:
+        if (c < 0x20 || c == 0x7f) {
+          char buf[8];
+          std::snprintf(buf, sizeof(buf), "\\u%04x", c);
+          out += buf;
+        } else {
+          out += ch;
+        }
+    }
+  }
+  return out + "\"";
 }
 
+// A value as the user would write it (double-quoted strings, shortest floats), for messages.
 std::string show(const toml::node& n) {
   if (n.is_table()) return "a table";
+  if (const auto* a = n.as_array()) {
+    std::string s = "[";
+    for (std::size_t i = 0; i < a->size(); ++i) s += (i ? ", " : "") + show(*a->get(i));
+    return s + "]";
+  }
+  if (const auto* v = n.as_string()) return toml_str(v->get());
+  if (const auto* v = n.as_floating_point()) return fmt_double(v->get());
+  if (const auto* v = n.as_integer()) return std::to_string(v->get());
   std::ostringstream os;
   n.visit([&](auto&& v) { os << v; });
   return os.str();
@@ -214,7 +242,7 @@ void apply_override(toml::table& root, const Override& ov) {
     where += (where.empty() ? "" : ".") + seg.name;
     toml::node* n = t->get(seg.name);
     if (seg.index) {
-      if (!n && *seg.index == 0) n = t->insert(seg.name, toml::array{}).first->second.as_array();
+      if (!n) n = t->insert(seg.name, toml::array{}).first->second.as_array();
       toml::array* arr = n ? n->as_array() : nullptr;
       if (!arr) bad_override(ov.text, where + " is not an array of tables");
       // one past the end appends, so a solid can be added from the command line
@@ -273,8 +301,10 @@ class Reader {
       std::string hint = closest(name, names);
       if (!hint.empty()) hint = " (did you mean [" + std::string(hint == "solid" ? "[solid]" : hint) + "]?)";
       else hint = elsewhere(name, "");
-      const char* what = v.is_table() ? "unknown section [" : "unknown top-level key ";
-      fail(name, what + name + (v.is_table() ? "]" : "") + hint + "; known sections: " + join(names));
+      const std::string what = v.is_table()                ? "unknown section [" + name + "]"
+                               : v.is_array_of_tables() ? "unknown section [[" + name + "]]"
+                                                        : "unknown top-level key " + name;
+      fail(name, what + hint + "; known sections: " + join(names));
     }
   }
 
@@ -569,7 +599,7 @@ void read_solids(const Reader& r, const toml::table& root, const DomainConfig& d
         dist2 += dx * dx;
       }
       const double dist = std::sqrt(dist2), radii = (out[i].diameter + out[j].diameter) / 2;
-      if (dist < radii) {
+      if (dist < radii * (1 - 1e-12)) {  // spheres written exactly one diameter apart may touch
         const std::string a = "solid[" + std::to_string(i) + "]", b = "solid[" + std::to_string(j) + "]";
         r.fail(b + ".center", a + " and " + b + " overlap: centre distance " + fmt_double(dist) +
                                   " must be >= the sum of radii " + fmt_double(radii) +
