@@ -74,6 +74,13 @@ std::string fmt_double(double x) {
   return s;
 }
 
+// A derived quantity (a distance, a reach) in messages: 6 digits, not the round-off tail.
+std::string fmt_derived(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%.6g", x);
+  return buf;
+}
+
 // A TOML basic string: double quotes, with backslash escapes for quotes and control characters.
 std::string toml_str(const std::string& s) {
   std::string out = "\"";
@@ -287,14 +294,19 @@ class Reader {
       std::string hint = closest(name, known);
       if (!hint.empty()) hint = " (did you mean " + scope + "." + hint + "?)";
       else hint = elsewhere(name, section);
-      fail(scope + "." + name, "unknown key " + scope + "." + name + hint + "; known keys in [" + section +
-                                   "]: " + join(known));
+      const std::string header = section == "solid" ? "[[solid]]" : "[" + section + "]";
+      fail(scope + "." + name, "unknown key " + scope + "." + name + hint + "; known keys in " + header + ": " +
+                                   join(known));
     }
   }
 
   void check_sections(const toml::table& root) const {
     std::vector<std::string> names;
-    for (const auto& s : schema()) names.emplace_back(s.name);
+    std::vector<std::string> headers;
+    for (const auto& s : schema()) {
+      names.emplace_back(s.name);
+      headers.push_back(names.back() == "solid" ? "[[solid]]" : "[" + names.back() + "]");
+    }
     for (const auto& [k, v] : root) {
       const std::string name(k.str());
       if (std::find(names.begin(), names.end(), name) != names.end()) continue;
@@ -304,7 +316,7 @@ class Reader {
       const std::string what = v.is_table()                ? "unknown section [" + name + "]"
                                : v.is_array_of_tables() ? "unknown section [[" + name + "]]"
                                                         : "unknown top-level key " + name;
-      fail(name, what + hint + "; known sections: " + join(names));
+      fail(name, what + hint + "; known sections: " + join(headers));
     }
   }
 
@@ -555,21 +567,21 @@ void read_solids(const Reader& r, const toml::table& root, const DomainConfig& d
         case Geometry::Pipe: {
           const double reach = std::hypot(y, z) + rad;
           if (!(reach < 0.5))
-            r.fail(s + ".center", s + " leaves the pipe: r + d/2 = " + fmt_double(reach) + " must be < R = 0.5 (" +
+            r.fail(s + ".center", s + " leaves the pipe: r + d/2 = " + fmt_derived(reach) + " must be < R = 0.5 (" +
                                       ctr + ", " + dia + ")");
           break;
         }
         case Geometry::Duct:
           if (!(std::abs(y) + rad < Ly / 2 && std::abs(z) + rad < Lz / 2))
-            r.fail(s + ".center", s + " leaves the duct: |y| + d/2 = " + fmt_double(std::abs(y) + rad) +
-                                      " and |z| + d/2 = " + fmt_double(std::abs(z) + rad) + " must be < Ly/2 = " +
+            r.fail(s + ".center", s + " leaves the duct: |y| + d/2 = " + fmt_derived(std::abs(y) + rad) +
+                                      " and |z| + d/2 = " + fmt_derived(std::abs(z) + rad) + " must be < Ly/2 = " +
                                       fmt_double(Ly / 2) + " and Lz/2 = " + fmt_double(Lz / 2) + " (" + ctr + ", " +
                                       dia + ")");
           break;
         case Geometry::Channel:
         case Geometry::Couette:
           if (!(std::abs(y) + rad < Ly / 2))
-            r.fail(s + ".center", s + " leaves the channel: |y| + d/2 = " + fmt_double(std::abs(y) + rad) +
+            r.fail(s + ".center", s + " leaves the channel: |y| + d/2 = " + fmt_derived(std::abs(y) + rad) +
                                       " must be < Ly/2 = " + fmt_double(Ly / 2) + " (" + ctr + ", " + dia + ")");
           if (c.diameter >= Lz) r.fail(s + ".diameter", dia + ": must be < Lz = " + fmt_double(Lz) + " (z is periodic)");
           break;
@@ -601,8 +613,8 @@ void read_solids(const Reader& r, const toml::table& root, const DomainConfig& d
       const double dist = std::sqrt(dist2), radii = (out[i].diameter + out[j].diameter) / 2;
       if (dist < radii * (1 - 1e-12)) {  // spheres written exactly one diameter apart may touch
         const std::string a = "solid[" + std::to_string(i) + "]", b = "solid[" + std::to_string(j) + "]";
-        r.fail(b + ".center", a + " and " + b + " overlap: centre distance " + fmt_double(dist) +
-                                  " must be >= the sum of radii " + fmt_double(radii) +
+        r.fail(b + ".center", a + " and " + b + " overlap: centre distance " + fmt_derived(dist) +
+                                  " must be >= the sum of radii " + fmt_derived(radii) +
                                   " (x is periodic with Lx = " + fmt_double(Lx) + ")");
       }
     }
