@@ -71,14 +71,21 @@ struct CaseConfig {
 };
 
 // Reads and validates a case file, applying `--set section.key=value` overrides (value in TOML
-// syntax, e.g. flow.Re=200, domain.cells=[32,16,16], output.dir="runs/x").
+// syntax, e.g. flow.Re=200, domain.cells=[32,16,16], output.dir="runs/x"; a bare word that is not
+// TOML is a string, so output.dir=runs/x works). Solids are addressed as solid[i].key; i equal to
+// the number of solids appends one. Overrides are applied before validation, so they are checked
+// the same way; every error is a ConfigError naming the file (and the override, if one is involved).
 CaseConfig parse_case_file(const std::string& path, const std::vector<std::string>& overrides = {});
 CaseConfig parse_case_string(const std::string& toml_text, const std::vector<std::string>& overrides = {},
                              const std::string& source_name = "<string>");
 // The resolved configuration as TOML (every key, defaults filled in): written into the run directory.
+// Keys the parser refuses for the geometry or shape (bulk_velocity for couette/periodic, thickness
+// for a sphere, diameter/center for a layer) are left out, so parse_case_string(to_toml(c)) == c.
 std::string to_toml(const CaseConfig& cfg);
 
 const char* to_string(Geometry g);
 const char* to_string(InitialFlow f);
+const char* to_string(SolidShape s);
+const char* to_string(InitialSolidVelocity v);
 
 }  // namespace eulerfsi
