@@ -4,6 +4,8 @@
 //    errors fall by ~4 when h halves (accepted: > 3);
 //  - penalized pipe: dp/dx -> -32/Re, u = 2(1 - 4 r^2); the wall is a staircase of cells, a
 //    first-order error, so the errors must fall under refinement (accepted: ratio > 1.5 for h/2).
+//    Bound: the staircase puts the wall within h/2 of r = R; at fixed flow rate dp/dx ~ R^-4 and
+//    u_max ~ R^-2, so both relative errors stay below 4 (h/2) / R = 4 h.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -58,10 +60,11 @@ TEST(LaminarDuct, PressureGradientAndProfileConvergeAtSecondOrder) {
   if (test::rank() == 0)
     std::printf("duct: dp/dx error %.3e -> %.3e (ratio %.2f), velocity error %.3e -> %.3e (ratio %.2f)\n", c.dpdx_rel,
                 f.dpdx_rel, c.dpdx_rel / f.dpdx_rel, c.velocity_rel, f.velocity_rel, c.velocity_rel / f.velocity_rel);
-  EXPECT_LT(f.dpdx_rel, 1e-2);
+  // second order: ratio 4 when h halves; [3, 5] leaves room for the O(h^4) remainder
   EXPECT_GT(c.dpdx_rel / f.dpdx_rel, 3.0);
-  EXPECT_LT(f.velocity_rel, 1e-2);
+  EXPECT_LT(c.dpdx_rel / f.dpdx_rel, 5.0);
   EXPECT_GT(c.velocity_rel / f.velocity_rel, 3.0);
+  EXPECT_LT(c.velocity_rel / f.velocity_rel, 5.0);
 }
 
 TEST(LaminarPipe, PenalizedPipeConvergesUnderRefinement) {
@@ -70,8 +73,10 @@ TEST(LaminarPipe, PenalizedPipeConvergesUnderRefinement) {
   if (test::rank() == 0)
     std::printf("pipe: dp/dx error %.3e -> %.3e (ratio %.2f), velocity error %.3e -> %.3e (ratio %.2f)\n", c.dpdx_rel,
                 f.dpdx_rel, c.dpdx_rel / f.dpdx_rel, c.velocity_rel, f.velocity_rel, c.velocity_rel / f.velocity_rel);
-  EXPECT_LT(f.dpdx_rel, 0.1);
+  EXPECT_LT(c.dpdx_rel, 4.0 / 16);
+  EXPECT_LT(f.dpdx_rel, 4.0 / 32);
   EXPECT_GT(c.dpdx_rel / f.dpdx_rel, 1.5);
-  EXPECT_LT(f.velocity_rel, 0.1);
+  EXPECT_LT(c.velocity_rel, 4.0 / 16);
+  EXPECT_LT(f.velocity_rel, 4.0 / 32);
   EXPECT_GT(c.velocity_rel / f.velocity_rel, 1.5);
 }
