@@ -12,11 +12,9 @@ namespace {
 
 // FFTW-MPI must be initialised once per process, after MPI_Init; cleanup is left to exit.
 void ensure_fftw_mpi_init() {
-  static bool done = false;
-  if (!done) {
-    fftw_mpi_init();
-    done = true;
-  }
+  // a function-local static runs exactly once, even if two threads construct solvers
+  static const bool done = (fftw_mpi_init(), true);
+  (void)done;
 }
 
 // Eigenvalues of (phi(i+1) - 2 phi(i) + phi(i-1)) / h^2 for the transform index m:

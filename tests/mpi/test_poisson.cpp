@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <mpi.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -232,7 +233,7 @@ INSTANTIATE_TEST_SUITE_P(
         // odd Ny, Nz: unequal y-blocks in the transposed spectrum, odd halfcomplex lengths
         Case{{12, 9, 7}, {1.0, 1.5, 0.7}, P, P}, Case{{12, 9, 7}, {1.0, 1.5, 0.7}, W, P},
         Case{{12, 9, 7}, {1.0, 1.5, 0.7}, P, W}, Case{{12, 9, 7}, {1.0, 1.5, 0.7}, W, W}),
-    [](const ::testing::TestParamInfo<Case>& info) { return case_name(info.param); });
+    [](const ::testing::TestParamInfo<Case>& p) { return case_name(p.param); });
 
 TEST(Poisson, FactoryGivesFftwMpi) {
   const int cells[3] = {12, 8, 8};
