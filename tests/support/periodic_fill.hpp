@@ -3,7 +3,7 @@
 // x first, then y, then z, so edges and corners are filled too.
 #include "core/types.hpp"
 
-namespace eulerfsi::testing {
+namespace eulerfsi::test_support {
 
 inline void fill_periodic(const Field3& f, const int n[3]) {
   const int e0 = n[0] + 2 * kGhost, e1 = n[1] + 2 * kGhost, e2 = n[2] + 2 * kGhost;
@@ -20,4 +20,4 @@ inline void fill_periodic(const Field3& f, const int n[3]) {
   }
 }
 
-}  // namespace eulerfsi::testing
+}  // namespace eulerfsi::test_support
