@@ -288,3 +288,100 @@ TEST(SolidTransport, ResetAndClip) {
   EXPECT_EQ(hxx(6, 1, 1), 5.0);
   EXPECT_EQ(hxy(6, 1, 1), 5.0);
 }
+
+namespace {
+
+// Manufactured periodic B_s = delta_s + a_s sin(2 pi x + p_s) sin(2 pi y + q_s) sin(2 pi z + r_s).
+struct ManufacturedB {
+  double a[6] = {0.3, -0.2, 0.25, 0.15, -0.1, 0.2};
+  double ph[6][3] = {{0.1, 0.2, 0.3}, {0.5, 0.1, 0.9}, {1.3, 0.4, 0.2}, {0.7, 1.1, 0.6}, {0.2, 0.8, 1.4}, {1.0, 0.3, 0.5}};
+  KOKKOS_INLINE_FUNCTION double value(int s, const double x[3]) const {
+    const double w = 2.0 * M_PI;
+    return (s < 3 ? 1.0 : 0.0) + a[s] * compat::sin(w * x[0] + ph[s][0]) * compat::sin(w * x[1] + ph[s][1]) *
+                                     compat::sin(w * x[2] + ph[s][2]);
+  }
+  KOKKOS_INLINE_FUNCTION double deriv(int s, int d, const double x[3]) const {
+    const double w = 2.0 * M_PI;
+    double f = a[s] * w;
+    for (int e = 0; e < 3; ++e) f *= e == d ? compat::cos(w * x[e] + ph[s][e]) : compat::sin(w * x[e] + ph[s][e]);
+    return f;
+  }
+};
+
+// max over D-faces of |rhs_D - G sum_E dB_DE/dx_E| with psi = 1, b = b_prev = manufactured B.
+double elastic_force_error(int N) {
+  const Mesh m(N, N, N, 1.0, 1.0, 1.0);
+  const double G = 2.0, h = m.h[0];
+  Field3 psi = m.field("psi");
+  Kokkos::deep_copy(psi, 1.0);
+  Tensor6 b = m.tensor("b");
+  const ManufacturedB mb;
+  for (int s = 0; s < 6; ++s) {
+    const Field3 bs = b.c[s];
+    Kokkos::parallel_for("test::mms_b", m.all().policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+      const double x[3] = {(i - kGhost + 0.5) * h, (j - kGhost + 0.5) * h, (k - kGhost + 0.5) * h};
+      bs(i, j, k) = mb.value(s, x);
+    });
+  }
+  Velocity rhs = m.velocity();
+  kernels::add_elastic_force(rhs, psi, b, b, G, m.h, m.interior());
+  double err = 0.0;
+  for (int D = 0; D < 3; ++D) {
+    const Field3 r = rhs.c[D];
+    double e = 0.0;
+    Kokkos::parallel_reduce("test::mms_err", m.interior().policy(), KOKKOS_LAMBDA(int i, int j, int k, double& mx) {
+      double x[3] = {(i - kGhost + 0.5) * h, (j - kGhost + 0.5) * h, (k - kGhost + 0.5) * h};
+      x[D] += 0.5 * h;  // the D-face
+      double exact = 0.0;
+      for (int E = 0; E < 3; ++E) exact += G * mb.deriv(kernels::tensor_index(D, E), E, x);
+      mx = compat::fmax(mx, compat::fabs(r(i, j, k) - exact));
+    }, Kokkos::Max<double>(e));
+    err = std::fmax(err, e);
+  }
+  return err;
+}
+
+}  // namespace
+
+// B = I (and the Crank-Nicolson pair B = I + X, B_prev = I - X) gives no stress, whatever psi is:
+// S = psi G ((B + B_prev)/2 - I) = 0 up to the rounding of (1+X) + (1-X): < 1e-12.
+TEST(ElasticForce, NoForceWithoutDeformation) {
+  const Mesh m(8, 8, 8, 1.0, 1.0, 1.0);
+  Field3 psi = m.field("psi");
+  const double lo[3] = {0, 0, 0}, c[3] = {0.5, 0.5, 0.5}, L[3] = {1, 1, 1};
+  fill_sphere(psi, m, lo, c, 0.3, L);
+  Tensor6 b = m.tensor("b"), bp = m.tensor("bp");
+  set_identity(b);
+  set_identity(bp);
+  Velocity rhs = m.velocity();
+  kernels::add_elastic_force(rhs, psi, b, bp, 3.0, m.h, m.interior());
+  double err = 0.0;
+  for (int d = 0; d < 3; ++d) err = std::fmax(err, max_abs_minus(rhs.c[d], 0.0, m.interior()));
+  EXPECT_EQ(err, 0.0);
+  for (int s = 0; s < 6; ++s) {
+    Kokkos::deep_copy(b.c[s], (s < 3 ? 1.0 : 0.0) + 0.37);
+    Kokkos::deep_copy(bp.c[s], (s < 3 ? 1.0 : 0.0) - 0.37);
+  }
+  kernels::add_elastic_force(rhs, psi, b, bp, 3.0, m.h, m.interior());
+  for (int d = 0; d < 3; ++d) err = std::fmax(err, max_abs_minus(rhs.c[d], 0.0, m.interior()));
+  EXPECT_LT(err, 1e-12);
+}
+
+// Central differences of cell-centre stresses on the MAC grid: O(h^2) truncation error, so the
+// max error falls by 4 per halving; we accept a ratio > 3.5.
+TEST(ElasticForce, SecondOrderOnManufacturedB) {
+  const double e16 = elastic_force_error(16), e32 = elastic_force_error(32), e64 = elastic_force_error(64);
+  std::printf("elastic force max err: N=16 %.3e  N=32 %.3e  N=64 %.3e  ratios %.2f %.2f\n", e16, e32, e64, e16 / e32,
+              e32 / e64);
+  EXPECT_GT(e16 / e32, 3.5);
+  EXPECT_GT(e32 / e64, 3.5);
+}
+
+TEST(ElasticForce, MixtureViscosity) {
+  const Mesh m(4, 4, 4, 1.0, 1.0, 1.0);
+  Field3 psi = m.field("psi"), mu = m.field("mu");
+  Kokkos::deep_copy(psi, 0.25);
+  Kokkos::deep_copy(mu, 0.01);
+  kernels::mixture_viscosity_add(mu, psi, 0.04 - 0.01, m.all());
+  EXPECT_LT(max_abs_minus(mu, 0.75 * 0.01 + 0.25 * 0.04, m.all()), 1e-17);
+}
