@@ -1,0 +1,82 @@
+#pragma once
+// Elastic stress of one soft body and the mixture viscosity:
+//   rhs_D += d/dx_E S_DE,   S = psi G ((B^k + B^(k-1))/2 - I)   at cell centres
+// on the MAC grid with the stencil of the viscous term in kernels/momentum.hpp: S_DD is
+// differenced between the two cells of the D-face, S_DE (E != D) is averaged from the four
+// cells around each edge and differenced across the face.
+#include "core/types.hpp"
+#include "kernels/momentum.hpp"
+#include "kernels/offsets.hpp"
+#include "kernels/solid_fields.hpp"
+
+namespace eulerfsi::kernels {
+
+// S_AB at cell (i,j,k) with the Crank-Nicolson average of B (explicit: B is advanced first).
+template <int A, int B>
+KOKKOS_FORCEINLINE_FUNCTION double elastic_stress(const Field3& psi, const Tensor6& b, const Tensor6& bp, double G,
+                                                  int i, int j, int k) {
+  constexpr int s = A == B ? A : (A + B == 1 ? XY : (A + B == 2 ? XZ : YZ));
+  return psi(i, j, k) * G * (0.5 * (b.c[s](i, j, k) + bp.c[s](i, j, k)) - (A == B ? 1.0 : 0.0));
+}
+
+// S_DE at the edge (i + e_D/2 + e_E/2): average of its four cells.
+template <int D, int E>
+KOKKOS_FORCEINLINE_FUNCTION double elastic_stress_edge(const Field3& psi, const Tensor6& b, const Tensor6& bp,
+                                                       double G, int i, int j, int k) {
+  constexpr int di = Unit<D>::i, dj = Unit<D>::j, dk = Unit<D>::k;
+  constexpr int ei = Unit<E>::i, ej = Unit<E>::j, ek = Unit<E>::k;
+  return 0.25 * (elastic_stress<D, E>(psi, b, bp, G, i, j, k) +
+                 elastic_stress<D, E>(psi, b, bp, G, i + di, j + dj, k + dk) +
+                 elastic_stress<D, E>(psi, b, bp, G, i + ei, j + ej, k + ek) +
+                 elastic_stress<D, E>(psi, b, bp, G, i + di + ei, j + dj + ej, k + dk + ek));
+}
+
+// (div S)_D at the D-face between cells i and i + e_D.
+template <int D>
+KOKKOS_FORCEINLINE_FUNCTION double elastic_force_at_face(const Field3& psi, const Tensor6& b, const Tensor6& bp,
+                                                         double G, const double inv_h[3], int i, int j, int k) {
+  constexpr int E1 = (D + 1) % 3, E2 = (D + 2) % 3;
+  const double fn = (elastic_stress<D, D>(psi, b, bp, G, i + Unit<D>::i, j + Unit<D>::j, k + Unit<D>::k) -
+                     elastic_stress<D, D>(psi, b, bp, G, i, j, k)) *
+                    inv_h[D];
+  const double f1 = (elastic_stress_edge<D, E1>(psi, b, bp, G, i, j, k) -
+                     elastic_stress_edge<D, E1>(psi, b, bp, G, i - Unit<E1>::i, j - Unit<E1>::j, k - Unit<E1>::k)) *
+                    inv_h[E1];
+  const double f2 = (elastic_stress_edge<D, E2>(psi, b, bp, G, i, j, k) -
+                     elastic_stress_edge<D, E2>(psi, b, bp, G, i - Unit<E2>::i, j - Unit<E2>::j, k - Unit<E2>::k)) *
+                    inv_h[E2];
+  return fn + f1 + f2;
+}
+
+template <int D>
+struct ElasticForce {
+  Field3 rhs, psi;
+  Tensor6 b, bp;
+  double G;
+  double inv_h[3];
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k) const {
+    rhs(i, j, k) += elastic_force_at_face<D>(psi, b, bp, G, inv_h, i, j, k);
+  }
+};
+
+// rhs_D += (div S)_D on the D-faces of `box` for D = x, y, z (one body; call once per body).
+inline void add_elastic_force(const Velocity& rhs, const Field3& psi, const Tensor6& b, const Tensor6& b_prev, double G,
+                              const double h[3], const Box& box) {
+  const double ih0 = 1.0 / h[0], ih1 = 1.0 / h[1], ih2 = 1.0 / h[2];
+  Kokkos::parallel_for("eulerfsi::solid::elastic_u", box.policy(),
+                       ElasticForce<0>{rhs.c[0], psi, b, b_prev, G, {ih0, ih1, ih2}});
+  Kokkos::parallel_for("eulerfsi::solid::elastic_v", box.policy(),
+                       ElasticForce<1>{rhs.c[1], psi, b, b_prev, G, {ih0, ih1, ih2}});
+  Kokkos::parallel_for("eulerfsi::solid::elastic_w", box.policy(),
+                       ElasticForce<2>{rhs.c[2], psi, b, b_prev, G, {ih0, ih1, ih2}});
+}
+
+// mu += psi dmu: the caller starts from mu = mu_f and adds each body with dmu = mu_s - mu_f,
+// giving mu = (1 - sum psi) mu_f + sum psi mu_s.
+inline void mixture_viscosity_add(const Field3& mu, const Field3& psi, double dmu, const Box& box) {
+  Kokkos::parallel_for("eulerfsi::solid::mixture_viscosity", box.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+    mu(i, j, k) += psi(i, j, k) * dmu;
+  });
+}
+
+}  // namespace eulerfsi::kernels

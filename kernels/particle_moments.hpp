@@ -1,0 +1,235 @@
+#pragma once
+// Diagnostics of one soft body: psi-weighted volume integrals over this rank's cells. Each
+// quantity is its own parallel_reduce with one Sum<double> (robust on Kokkos 3.4 and 4.x); the
+// caller MPI-sums the plain structs (they are arrays of doubles) and finishes on the host.
+#include <cmath>
+
+#include "core/compat.hpp"
+#include "core/types.hpp"
+#include "kernels/momentum.hpp"
+#include "kernels/offsets.hpp"
+#include "kernels/solid_fields.hpp"
+
+namespace eulerfsi::kernels {
+
+// Cell-centre coordinates from storage indices: x_d(s) = x0[d] + s h[d], x0[d] = grid.centre(d, 0).
+struct CellCentres {
+  double x0[3];
+  double h[3];
+  KOKKOS_INLINE_FUNCTION double operator()(int d, int s) const { return x0[d] + s * h[d]; }
+};
+
+// First moments, all multiplied by dV:
+//   volume = sum psi, y = sum psi y, z = sum psi z, cos/sin = sum psi cos|sin(2 pi x / Lx),
+//   u, v, w = sum psi u_c (face velocities averaged to the centre).
+struct BodyFirstMoments {
+  enum { Volume, Y, Z, Cos, Sin, U, V, W, Count };
+  double s[Count];
+};
+// Moments about a reference point c (minimum image in the periodic directions), times dV:
+//   m1_a = sum psi (x_a - c_a), m2 = sum psi (x_a - c_a)(x_b - c_b) in the order XX,YY,ZZ,XY,XZ,YZ.
+struct BodySecondMoments {
+  enum { Count = 9 };
+  double m1[3];
+  double m2[kTensorComponents];
+};
+// The paper's force decomposition (eq. force), psi-weighted, at cell centres, times dV:
+//   P = -sum psi grad p, I = -sum psi div(u u), V = sum psi mu_s div(grad u + grad u^T),
+//   E = sum psi G div(B - I).
+struct BodyForces {
+  enum { Count = 12 };
+  double pressure[3], inertia[3], viscous[3], elastic[3];
+};
+
+namespace detail {
+
+template <class F>
+inline double sum_over(const char* label, const Box& box, const F& f) {
+  double r = 0.0;
+  Kokkos::parallel_reduce(label, box.policy(), f, Kokkos::Sum<double>(r));
+  return r;
+}
+
+// x - c mapped to [-L/2, L/2) when the direction is periodic with period L (L = 0: not periodic).
+KOKKOS_INLINE_FUNCTION double min_image(double d, double L) {
+  if (L <= 0.0) return d;
+  const double t = d / L + 0.5;
+  long n = static_cast<long>(t);  // floor without a version-dependent Kokkos math call
+  if (t < static_cast<double>(n)) n -= 1;
+  return d - L * static_cast<double>(n);
+}
+
+struct FirstMomentTerm {
+  Field3 psi, u, v, w;
+  CellCentres xc;
+  double kx;  // 2 pi / Lx
+  int what;
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k, double& acc) const {
+    const double p = psi(i, j, k);
+    double f = 1.0;
+    switch (what) {
+      case BodyFirstMoments::Y: f = xc(1, j); break;
+      case BodyFirstMoments::Z: f = xc(2, k); break;
+      case BodyFirstMoments::Cos: f = compat::cos(kx * xc(0, i)); break;
+      case BodyFirstMoments::Sin: f = compat::sin(kx * xc(0, i)); break;
+      case BodyFirstMoments::U: f = 0.5 * (u(i, j, k) + u(i - 1, j, k)); break;
+      case BodyFirstMoments::V: f = 0.5 * (v(i, j, k) + v(i, j - 1, k)); break;
+      case BodyFirstMoments::W: f = 0.5 * (w(i, j, k) + w(i, j, k - 1)); break;
+      default: break;
+    }
+    acc += p * f;
+  }
+};
+
+struct SecondMomentTerm {
+  Field3 psi;
+  CellCentres xc;
+  double c[3], period[3];
+  int what;  // 0..2: m1, 3..8: m2
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k, double& acc) const {
+    const double d[3] = {min_image(xc(0, i) - c[0], period[0]), min_image(xc(1, j) - c[1], period[1]),
+                         min_image(xc(2, k) - c[2], period[2])};
+    const int ra[6] = {0, 1, 2, 0, 0, 1}, rb[6] = {0, 1, 2, 1, 2, 2};
+    const double f = what < 3 ? d[what] : d[ra[what - 3]] * d[rb[what - 3]];
+    acc += psi(i, j, k) * f;
+  }
+};
+
+// div(u u_D) at the D-face between i and i + e_D, as in kernels/momentum.hpp.
+template <int D, int E>
+KOKKOS_FORCEINLINE_FUNCTION double advective_edge(const Velocity& vel, int i, int j, int k) {
+  const Field3& uD = vel.c[D];
+  const Field3& uE = vel.c[E];
+  return 0.25 * (uD(i, j, k) + shifted<E>(uD, i, j, k, 1)) * (uE(i, j, k) + shifted<D>(uE, i, j, k, 1));
+}
+template <int D>
+KOKKOS_FORCEINLINE_FUNCTION double advection_at_face(const Velocity& vel, const double inv_h[3], int i, int j, int k) {
+  constexpr int E1 = (D + 1) % 3, E2 = (D + 2) % 3;
+  const Field3& uD = vel.c[D];
+  const double cp = 0.5 * (shifted<D>(uD, i, j, k, 1) + uD(i, j, k));
+  const double cm = 0.5 * (uD(i, j, k) + shifted<D>(uD, i, j, k, -1));
+  return (cp * cp - cm * cm) * inv_h[D] +
+         (advective_edge<D, E1>(vel, i, j, k) -
+          advective_edge<D, E1>(vel, i - Unit<E1>::i, j - Unit<E1>::j, k - Unit<E1>::k)) *
+             inv_h[E1] +
+         (advective_edge<D, E2>(vel, i, j, k) -
+          advective_edge<D, E2>(vel, i - Unit<E2>::i, j - Unit<E2>::j, k - Unit<E2>::k)) *
+             inv_h[E2];
+}
+
+// div(grad u + grad u^T)_D at the D-face, the viscous stencil of kernels/momentum.hpp with mu = 1.
+template <int D, int E>
+KOKKOS_FORCEINLINE_FUNCTION double strain_edge(const Velocity& vel, const double inv_h[3], int i, int j, int k) {
+  const Field3& uD = vel.c[D];
+  const Field3& uE = vel.c[E];
+  return (shifted<E>(uD, i, j, k, 1) - uD(i, j, k)) * inv_h[E] + (shifted<D>(uE, i, j, k, 1) - uE(i, j, k)) * inv_h[D];
+}
+template <int D>
+KOKKOS_FORCEINLINE_FUNCTION double viscous_at_face(const Velocity& vel, const double inv_h[3], int i, int j, int k) {
+  constexpr int E1 = (D + 1) % 3, E2 = (D + 2) % 3;
+  const Field3& uD = vel.c[D];
+  const double sp = 2.0 * (shifted<D>(uD, i, j, k, 1) - uD(i, j, k)) * inv_h[D];
+  const double sm = 2.0 * (uD(i, j, k) - shifted<D>(uD, i, j, k, -1)) * inv_h[D];
+  return (sp - sm) * inv_h[D] +
+         (strain_edge<D, E1>(vel, inv_h, i, j, k) -
+          strain_edge<D, E1>(vel, inv_h, i - Unit<E1>::i, j - Unit<E1>::j, k - Unit<E1>::k)) *
+             inv_h[E1] +
+         (strain_edge<D, E2>(vel, inv_h, i, j, k) -
+          strain_edge<D, E2>(vel, inv_h, i - Unit<E2>::i, j - Unit<E2>::j, k - Unit<E2>::k)) *
+             inv_h[E2];
+}
+
+// One force term in direction D at the centre of cell (i,j,k), not yet weighted by psi.
+template <int D>
+KOKKOS_INLINE_FUNCTION double force_term(int term, const Field3& p, const Velocity& vel, const Tensor6& b, double G,
+                                         double mu_s, const double inv_h[3], int i, int j, int k) {
+  constexpr int di = Unit<D>::i, dj = Unit<D>::j, dk = Unit<D>::k;
+  switch (term) {
+    case 0:  // -dp/dx_D, central difference of cell-centre pressure
+      return -0.5 * inv_h[D] * (p(i + di, j + dj, k + dk) - p(i - di, j - dj, k - dk));
+    case 1:  // face terms averaged over the two D-faces of the cell
+      return -0.5 * (advection_at_face<D>(vel, inv_h, i, j, k) + advection_at_face<D>(vel, inv_h, i - di, j - dj, k - dk));
+    case 2:
+      return 0.5 * mu_s *
+             (viscous_at_face<D>(vel, inv_h, i, j, k) + viscous_at_face<D>(vel, inv_h, i - di, j - dj, k - dk));
+    default: {  // G d(B_DE)/dx_E by central differences (I is divergence free)
+      double s = 0.0;
+      for (int e = 0; e < 3; ++e) {
+        const Field3& bde = b.c[tensor_index(D, e)];
+        const int ei = e == 0, ej = e == 1, ek = e == 2;
+        s += 0.5 * inv_h[e] * (bde(i + ei, j + ej, k + ek) - bde(i - ei, j - ej, k - ek));
+      }
+      return G * s;
+    }
+  }
+}
+
+struct ForceTerm {
+  Field3 psi, p;
+  Velocity vel;
+  Tensor6 b;
+  double G, mu_s;
+  double inv_h[3];
+  int term, dir;
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k, double& acc) const {
+    const double w = psi(i, j, k);
+    if (w == 0.0) return;  // most of the domain: skip the stencils
+    const double f = dir == 0   ? force_term<0>(term, p, vel, b, G, mu_s, inv_h, i, j, k)
+                     : dir == 1 ? force_term<1>(term, p, vel, b, G, mu_s, inv_h, i, j, k)
+                                : force_term<2>(term, p, vel, b, G, mu_s, inv_h, i, j, k);
+    acc += w * f;
+  }
+};
+
+}  // namespace detail
+
+// First moments of psi over `box` (owned cells), each times dV. Lx: periodic length in x.
+inline BodyFirstMoments body_first_moments(const Field3& psi, const Velocity& vel, const CellCentres& xc, double Lx,
+                                           const Box& box) {
+  const double dv = xc.h[0] * xc.h[1] * xc.h[2];
+  BodyFirstMoments r{};
+  for (int q = 0; q < BodyFirstMoments::Count; ++q) {
+    detail::FirstMomentTerm f{psi, vel.c[0], vel.c[1], vel.c[2], xc, 2.0 * M_PI / Lx, q};
+    r.s[q] = dv * detail::sum_over("eulerfsi::diag::body_first_moments", box, f);
+  }
+  return r;
+}
+
+// Moments about the point c; period[d] = domain length in a periodic direction, 0 otherwise.
+inline BodySecondMoments body_second_moments(const Field3& psi, const CellCentres& xc, const double c[3],
+                                             const double period[3], const Box& box) {
+  const double dv = xc.h[0] * xc.h[1] * xc.h[2];
+  BodySecondMoments r{};
+  for (int q = 0; q < BodySecondMoments::Count; ++q) {
+    detail::SecondMomentTerm f{psi, xc, {c[0], c[1], c[2]}, {period[0], period[1], period[2]}, q};
+    const double s = dv * detail::sum_over("eulerfsi::diag::body_second_moments", box, f);
+    if (q < 3) r.m1[q] = s; else r.m2[q - 3] = s;
+  }
+  return r;
+}
+
+// Force terms of the paper's eq. (force) for one body; needs one ghost layer of p, u, B.
+inline BodyForces body_forces(const Field3& psi, const Field3& p, const Velocity& vel, const Tensor6& b, double G,
+                              double mu_s, const double h[3], const Box& box) {
+  const double dv = h[0] * h[1] * h[2];
+  BodyForces r{};
+  double* out[4] = {r.pressure, r.inertia, r.viscous, r.elastic};
+  for (int term = 0; term < 4; ++term)
+    for (int d = 0; d < 3; ++d) {
+      detail::ForceTerm f{psi, p, vel, b, G, mu_s, {1.0 / h[0], 1.0 / h[1], 1.0 / h[2]}, term, d};
+      out[term][d] = dv * detail::sum_over("eulerfsi::diag::body_forces", box, f);
+    }
+  return r;
+}
+
+// Host: x-centroid as the circular mean of psi on the periodic x axis, in [0, Lx). Exact for a
+// body symmetric about its centre; in general a reference point within the body from which
+// body_second_moments' m1 gives the exact unwrapped centroid c = ref + m1 / volume (minimum image,
+// valid while the body spans less than Lx/2 around ref).
+inline double circular_mean_x(double cos_sum, double sin_sum, double Lx) {
+  double x = std::atan2(sin_sum, cos_sum) * Lx / (2.0 * M_PI);
+  if (x < 0.0) x += Lx;
+  return x;
+}
+
+}  // namespace eulerfsi::kernels

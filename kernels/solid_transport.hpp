@@ -1,0 +1,134 @@
+#pragma once
+// Transport of the solid volume fraction psi and of the left Cauchy-Green tensor B:
+//   dpsi/dt = -div(u psi)
+//   dB/dt   = -div(u B) + L B + B L^T,   L_ab = du_a/dx_b   (upper-convected derivative = 0)
+// Advection in finite-difference flux form: F_{i+1/2} = u_{i+1/2} q^WENO5_{i+1/2}, upwinded by
+// the sign of the face velocity; the rhs is the flux difference, so sum(psi) changes only
+// through the boundary faces (conservative). Stretching with second-order central differences
+// at the cell centre.
+#include "core/compat.hpp"
+#include "core/types.hpp"
+#include "kernels/momentum.hpp"
+#include "kernels/offsets.hpp"
+#include "kernels/solid_fields.hpp"
+#include "kernels/weno5.hpp"
+
+namespace eulerfsi::kernels {
+
+// (F_D(i) - F_D(i - e_D)) / h_D with F_D(i) = u_D(i) q^WENO at the face between i and i+e_D.
+template <int D>
+KOKKOS_FORCEINLINE_FUNCTION double weno_flux_difference(const Field3& q, const Field3& uD, double inv_h, int i, int j,
+                                                        int k) {
+  const double up = uD(i, j, k);
+  const double um = shifted<D>(uD, i, j, k, -1);
+  const double fp = up * face_value_upwind<D>(q, up, i, j, k);
+  const double fm = um * face_value_upwind<D>(q, um, i - Unit<D>::i, j - Unit<D>::j, k - Unit<D>::k);
+  return (fp - fm) * inv_h;
+}
+
+KOKKOS_FORCEINLINE_FUNCTION double weno_divergence(const Field3& q, const Field3& u, const Field3& v, const Field3& w,
+                                                   const double inv_h[3], int i, int j, int k) {
+  return weno_flux_difference<0>(q, u, inv_h[0], i, j, k) + weno_flux_difference<1>(q, v, inv_h[1], i, j, k) +
+         weno_flux_difference<2>(q, w, inv_h[2], i, j, k);
+}
+
+// L_AB = du_A/dx_B at the centre of cell (i,j,k): the diagonal from the cell's two A-faces,
+// off-diagonals as central differences of the two-face averages (four faces around the centre).
+template <int A, int B>
+KOKKOS_FORCEINLINE_FUNCTION double velocity_gradient_at_centre(const Field3& uA, const double inv_h[3], int i, int j,
+                                                               int k) {
+  if constexpr (A == B) {
+    return (uA(i, j, k) - shifted<A>(uA, i, j, k, -1)) * inv_h[A];
+  } else {
+    return 0.25 * inv_h[B] *
+           (shifted<B>(uA, i, j, k, 1) + shifted<A, B>(uA, i, j, k, -1, 1) - shifted<B>(uA, i, j, k, -1) -
+            shifted<A, B>(uA, i, j, k, -1, -1));
+  }
+}
+
+// rhs = -div_h^WENO(u psi)
+inline void scalar_advection_rhs(const Field3& rhs, const Field3& q, const Velocity& vel, const double h[3],
+                                 const Box& box) {
+  const double ih0 = 1.0 / h[0], ih1 = 1.0 / h[1], ih2 = 1.0 / h[2];
+  const Field3 u = vel.c[0], v = vel.c[1], w = vel.c[2];
+  Kokkos::parallel_for("eulerfsi::solid::psi_rhs", box.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+    const double inv_h[3] = {ih0, ih1, ih2};
+    rhs(i, j, k) = -weno_divergence(q, u, v, w, inv_h, i, j, k);
+  });
+}
+
+// rhs_ab = -div_h^WENO(u B_ab) + (L B + B L^T)_ab for all six components in one pass (u, v, w
+// and the nine gradients are read once per cell).
+struct TensorTransportRhs {
+  Tensor6 rhs, b;
+  Field3 u, v, w;
+  double inv_h[3];
+
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k) const {
+    double L[3][3];
+    L[0][0] = velocity_gradient_at_centre<0, 0>(u, inv_h, i, j, k);
+    L[0][1] = velocity_gradient_at_centre<0, 1>(u, inv_h, i, j, k);
+    L[0][2] = velocity_gradient_at_centre<0, 2>(u, inv_h, i, j, k);
+    L[1][0] = velocity_gradient_at_centre<1, 0>(v, inv_h, i, j, k);
+    L[1][1] = velocity_gradient_at_centre<1, 1>(v, inv_h, i, j, k);
+    L[1][2] = velocity_gradient_at_centre<1, 2>(v, inv_h, i, j, k);
+    L[2][0] = velocity_gradient_at_centre<2, 0>(w, inv_h, i, j, k);
+    L[2][1] = velocity_gradient_at_centre<2, 1>(w, inv_h, i, j, k);
+    L[2][2] = velocity_gradient_at_centre<2, 2>(w, inv_h, i, j, k);
+    double B[3][3];
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < 3; ++c) B[a][c] = b.c[tensor_index(a, c)](i, j, k);
+    // component (a, c) of each of the six storage slots
+    const int ra[kTensorComponents] = {0, 1, 2, 0, 0, 1};
+    const int rc[kTensorComponents] = {0, 1, 2, 1, 2, 2};
+    for (int s = 0; s < kTensorComponents; ++s) {
+      const int a = ra[s], c = rc[s];
+      double stretch = 0.0;
+      for (int m = 0; m < 3; ++m) stretch += L[a][m] * B[m][c] + B[a][m] * L[c][m];
+      rhs.c[s](i, j, k) = stretch - weno_divergence(b.c[s], u, v, w, inv_h, i, j, k);
+    }
+  }
+};
+
+inline void tensor_transport_rhs(const Tensor6& rhs, const Tensor6& b, const Velocity& vel, const double h[3],
+                                 const Box& box) {
+  TensorTransportRhs f{rhs, b, vel.c[0], vel.c[1], vel.c[2], {1.0 / h[0], 1.0 / h[1], 1.0 / h[2]}};
+  Kokkos::parallel_for("eulerfsi::solid::b_rhs", box.policy(), f);
+}
+
+// Low-storage RK3 substep: q += dt (gamma rhs + zeta rhs_old). The caller swaps rhs and rhs_old.
+inline void rk3_scalar_update(const Field3& q, const Field3& rhs, const Field3& rhs_old, double dt, double gamma,
+                              double zeta, const Box& box) {
+  const double a = dt * gamma, c = dt * zeta;
+  Kokkos::parallel_for("eulerfsi::solid::psi_update", box.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+    q(i, j, k) += a * rhs(i, j, k) + c * rhs_old(i, j, k);
+  });
+}
+
+inline void rk3_tensor_update(const Tensor6& b, const Tensor6& rhs, const Tensor6& rhs_old, double dt, double gamma,
+                              double zeta, const Box& box) {
+  const double a = dt * gamma, c = dt * zeta;
+  Kokkos::parallel_for("eulerfsi::solid::b_update", box.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+    for (int s = 0; s < kTensorComponents; ++s) b.c[s](i, j, k) += a * rhs.c[s](i, j, k) + c * rhs_old.c[s](i, j, k);
+  });
+}
+
+// psi = min(max(psi, 0), 1): WENO5 is essentially non-oscillatory, not bounded, so a sharp
+// interface leaves over- and undershoots of a few 1e-3 that clipping removes (this breaks exact
+// conservation by the clipped amount).
+inline void clip_volume_fraction(const Field3& psi, const Box& box) {
+  Kokkos::parallel_for("eulerfsi::solid::psi_clip", box.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+    psi(i, j, k) = compat::fmin(compat::fmax(psi(i, j, k), 0.0), 1.0);
+  });
+}
+
+// B = I where psi < psi_min: outside the solid B has no meaning and the stretching term would
+// let it grow without bound in shear; the stress there is psi G (B - I), so the reset is harmless.
+inline void reset_tensor_outside(const Tensor6& b, const Field3& psi, double psi_min, const Box& box) {
+  Kokkos::parallel_for("eulerfsi::solid::b_reset", box.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+    if (psi(i, j, k) < psi_min)
+      for (int s = 0; s < kTensorComponents; ++s) b.c[s](i, j, k) = s < 3 ? 1.0 : 0.0;
+  });
+}
+
+}  // namespace eulerfsi::kernels
