@@ -1,0 +1,154 @@
+#include "solid/particle_diagnostics.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "kernels/particle_moments.hpp"
+
+namespace eulerfsi {
+
+void symmetric_eigen3(const double a_in[3][3], double values[3], double vectors[3][3]) {
+  double a[3][3], v[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) a[r][c] = a_in[r][c];
+  for (int sweep = 0; sweep < 50; ++sweep) {
+    const double off = a[0][1] * a[0][1] + a[0][2] * a[0][2] + a[1][2] * a[1][2];
+    if (off < 1e-30 * (a[0][0] * a[0][0] + a[1][1] * a[1][1] + a[2][2] * a[2][2] + 1e-300)) break;
+    for (int p = 0; p < 2; ++p)
+      for (int q = p + 1; q < 3; ++q) {
+        if (a[p][q] == 0.0) continue;
+        // classic Jacobi rotation zeroing a[p][q]
+        const double theta = 0.5 * (a[q][q] - a[p][p]) / a[p][q];
+        const double t = (theta >= 0 ? 1.0 : -1.0) / (std::fabs(theta) + std::sqrt(theta * theta + 1.0));
+        const double c = 1.0 / std::sqrt(t * t + 1.0), s = t * c;
+        for (int k = 0; k < 3; ++k) {
+          const double akp = a[k][p], akq = a[k][q];
+          a[k][p] = c * akp - s * akq;
+          a[k][q] = s * akp + c * akq;
+        }
+        for (int k = 0; k < 3; ++k) {
+          const double apk = a[p][k], aqk = a[q][k];
+          a[p][k] = c * apk - s * aqk;
+          a[q][k] = s * apk + c * aqk;
+        }
+        for (int k = 0; k < 3; ++k) {
+          const double vkp = v[k][p], vkq = v[k][q];
+          v[k][p] = c * vkp - s * vkq;
+          v[k][q] = s * vkp + c * vkq;
+        }
+      }
+  }
+  int order[3] = {0, 1, 2};
+  std::sort(order, order + 3, [&a](int x, int y) { return a[x][x] < a[y][y]; });
+  for (int n = 0; n < 3; ++n) {
+    values[n] = a[order[n]][order[n]];
+    for (int k = 0; k < 3; ++k) vectors[k][n] = v[k][order[n]];
+  }
+}
+
+ParticleTracker::ParticleTracker(const CaseConfig& cfg, const Grid& grid, const Comm& comm)
+    : cfg_(cfg), grid_(grid), comm_(comm) {
+  for (const auto& s : cfg.solids) last_x_.push_back(s.center[0]);
+}
+
+namespace {
+
+template <size_t N>
+void sum_all(const Comm& comm, double (&a)[N]) {
+  MPI_Allreduce(MPI_IN_PLACE, a, int(N), MPI_DOUBLE, MPI_SUM, comm.comm);
+}
+
+}  // namespace
+
+std::vector<ParticleState> ParticleTracker::measure(const SolidPhase& solids, const FlowState& flow) {
+  const Box box = grid_.interior();
+  const kernels::CellCentres xc{{grid_.centre(0, 0), grid_.centre(1, 0), grid_.centre(2, 0)},
+                                {grid_.h[0], grid_.h[1], grid_.h[2]}};
+  const double lx = grid_.length[0];
+  const double half_width = 0.5 * grid_.length[1];
+  std::vector<ParticleState> out;
+  for (size_t n = 0; n < solids.bodies().size(); ++n) {
+    const SolidBody& body = solids.bodies()[n];
+    ParticleState s;
+    auto first = kernels::body_first_moments(body.psi, flow.vel, xc, lx, box);
+    sum_all(comm_, first.s);
+    using F = kernels::BodyFirstMoments;
+    s.volume = first.s[F::Volume];
+    if (s.volume <= 0.0) {
+      out.push_back(s);
+      continue;
+    }
+    // reference point: circular mean in x, plain mean in y, z; then the exact moments about it
+    const double ref[3] = {kernels::circular_mean_x(first.s[F::Cos], first.s[F::Sin], lx), first.s[F::Y] / s.volume,
+                           first.s[F::Z] / s.volume};
+    const double period[3] = {lx, grid_.bc[1] == Boundary::Periodic ? grid_.length[1] : 0.0,
+                              grid_.bc[2] == Boundary::Periodic ? grid_.length[2] : 0.0};
+    auto second = kernels::body_second_moments(body.psi, xc, ref, period, box);
+    double m[9];
+    for (int a = 0; a < 3; ++a) m[a] = second.m1[a];
+    for (int a = 0; a < 6; ++a) m[3 + a] = second.m2[a];
+    sum_all(comm_, m);
+    double c_local[3];
+    for (int a = 0; a < 3; ++a) c_local[a] = ref[a] + m[a] / s.volume;
+    // unwrap x: move by whole periods to stay nearest the previous centroid
+    const double prev = last_x_[n];
+    s.centre[0] = c_local[0] + lx * std::round((prev - c_local[0]) / lx);
+    s.centre[1] = c_local[1];
+    s.centre[2] = c_local[2];
+    last_x_[n] = s.centre[0];
+    for (int a = 0; a < 3; ++a) s.velocity[a] = first.s[F::U + a] / s.volume;
+    // covariance about the centroid; an ellipsoid with semi-axis a has <x^2> = a^2 / 5
+    const int ra[6] = {0, 1, 2, 0, 0, 1}, rb[6] = {0, 1, 2, 1, 2, 2};
+    double cov[3][3];
+    for (int q = 0; q < 6; ++q) {
+      const double val = m[3 + q] / s.volume - (m[ra[q]] / s.volume) * (m[rb[q]] / s.volume);
+      cov[ra[q]][rb[q]] = cov[rb[q]][ra[q]] = val;
+    }
+    double eval[3], evec[3][3];
+    symmetric_eigen3(cov, eval, evec);
+    for (int a = 0; a < 3; ++a) s.semi_axes[a] = std::sqrt(std::max(0.0, 5.0 * eval[a]));
+    s.taylor_D = (s.semi_axes[2] - s.semi_axes[0]) / (s.semi_axes[2] + s.semi_axes[0]);
+    // radial direction: from the axis to the centroid (pipe, duct), the wall normal y otherwise
+    const bool axial = cfg_.domain.geometry == Geometry::Pipe || cfg_.domain.geometry == Geometry::Duct;
+    const double r = std::hypot(s.centre[1], s.centre[2]);
+    if (axial && r > 1e-12) {
+      s.radial_dir[1] = s.centre[1] / r;
+      s.radial_dir[2] = s.centre[2] / r;
+    }
+    s.r_over_R = (axial ? r : std::fabs(s.centre[1])) / half_width;
+    // orientation of the major axis in the (x, radial) plane, folded into (-pi/2, pi/2]
+    const double ax = evec[0][2], ar = evec[1][2] * s.radial_dir[1] + evec[2][2] * s.radial_dir[2];
+    double angle = std::atan2(ar, ax);
+    if (angle > M_PI / 2) angle -= M_PI;
+    if (angle <= -M_PI / 2) angle += M_PI;
+    s.angle = angle;
+    auto forces = kernels::body_forces(body.psi, flow.p, flow.vel, body.b, body.G, body.mu_s, grid_.h, box);
+    double f[12];
+    for (int a = 0; a < 3; ++a) {
+      f[a] = forces.pressure[a];
+      f[3 + a] = forces.inertia[a];
+      f[6 + a] = forces.viscous[a];
+      f[9 + a] = forces.elastic[a];
+    }
+    sum_all(comm_, f);
+    for (int term = 0; term < 4; ++term)
+      s.force[term] = f[3 * term + 1] * s.radial_dir[1] + f[3 * term + 2] * s.radial_dir[2];
+    out.push_back(s);
+  }
+  return out;
+}
+
+const std::vector<std::string>& particle_columns() {
+  static const std::vector<std::string> cols = {
+      "step", "t", "solid", "xc", "yc", "zc", "r_over_R", "up", "vp", "wp", "volume", "taylor_D", "angle",
+      "F_r", "F_r_pressure", "F_r_inertia", "F_r_viscous", "F_r_elastic"};
+  return cols;
+}
+
+std::vector<double> particle_row(long step, double t, int body, const ParticleState& s) {
+  return {double(step), t, double(body), s.centre[0], s.centre[1], s.centre[2], s.r_over_R, s.velocity[0],
+          s.velocity[1], s.velocity[2], s.volume, s.taylor_D, s.angle, s.force_total(), s.force[0], s.force[1],
+          s.force[2], s.force[3]};
+}
+
+}  // namespace eulerfsi
