@@ -28,6 +28,8 @@ struct BodyFirstMoments {
 };
 // Moments about a reference point c (minimum image in the periodic directions), times dV:
 //   m1_a = sum psi (x_a - c_a), m2 = sum psi (x_a - c_a)(x_b - c_b) in the order XX,YY,ZZ,XY,XZ,YZ.
+// psi is the body's indicator smoothed by the cell box, so m2_aa exceeds the body's own moment by
+// V h_a^2/12 (isotropic on a cubic mesh; subtract it for absolute moments).
 struct BodySecondMoments {
   enum { Count = 9 };
   double m1[3];
