@@ -114,11 +114,35 @@ inline void rk3_tensor_update(const Tensor6& b, const Tensor6& rhs, const Tensor
 }
 
 // psi = min(max(psi, 0), 1): WENO5 is essentially non-oscillatory, not bounded, so a sharp
-// interface leaves over- and undershoots of a few 1e-3 that clipping removes (this breaks exact
-// conservation by the clipped amount).
-inline void clip_volume_fraction(const Field3& psi, const Box& box) {
-  Kokkos::parallel_for("eulerfsi::solid::psi_clip", box.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
-    psi(i, j, k) = compat::fmin(compat::fmax(psi(i, j, k), 0.0), 1.0);
+// interface leaves over- and undershoots of a few 1e-3 that clipping removes. Returns the local
+// volume removed, sum (psi_before - psi_after), for the conservative correction below.
+inline double clip_volume_fraction(const Field3& psi, const Box& box) {
+  double removed = 0.0;
+  Kokkos::parallel_reduce("eulerfsi::solid::psi_clip", box.policy(), KOKKOS_LAMBDA(int i, int j, int k, double& r) {
+    const double before = psi(i, j, k);
+    const double after = compat::fmin(compat::fmax(before, 0.0), 1.0);
+    psi(i, j, k) = after;
+    r += before - after;
+  }, Kokkos::Sum<double>(removed));
+  return removed;
+}
+
+// sum psi (1 - psi): the weight of the interface cells that take back the clipped volume.
+inline double interface_weight(const Field3& psi, const Box& box) {
+  double w = 0.0;
+  Kokkos::parallel_reduce("eulerfsi::solid::psi_interface", box.policy(), KOKKOS_LAMBDA(int i, int j, int k, double& r) {
+    const double p = psi(i, j, k);
+    r += p * (1.0 - p);
+  }, Kokkos::Sum<double>(w));
+  return w;
+}
+
+// psi += c psi (1 - psi): returns the clipped volume to the interface only, and keeps psi in
+// [0, 1] while |c| <= 1 (the clipped volume is a tiny fraction of the interface weight).
+inline void add_to_interface(const Field3& psi, double c, const Box& box) {
+  Kokkos::parallel_for("eulerfsi::solid::psi_restore", box.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+    const double p = psi(i, j, k);
+    psi(i, j, k) = p + c * p * (1.0 - p);
   });
 }
 

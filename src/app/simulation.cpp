@@ -12,6 +12,9 @@
 #include "io/field_writer.hpp"
 #include "io/profiles.hpp"
 #include "kernels/interpolation.hpp"
+#include "solid/migration_summary.hpp"
+#include "solid/particle_diagnostics.hpp"
+#include "solid/shape_section.hpp"
 #include "solid/solid_phase.hpp"
 #include "solver/flow_solver.hpp"
 
@@ -39,12 +42,17 @@ class Simulation {
  public:
   Simulation(const CaseConfig& cfg, const Comm& comm, const RunOptions& opt)
       : cfg_(cfg), comm_(comm), opt_(opt), grid_(make_grid(cfg, comm)), flow_(cfg, grid_, comm),
-        solids_(cfg, grid_, flow_.boundaries(), comm), fields_(grid_, comm.comm, cfg.output.dir) {}
+        solids_(cfg, grid_, flow_.boundaries(), comm), tracker_(cfg, grid_, comm),
+        fields_(grid_, comm.comm, cfg.output.dir) {}
 
   int run() {
     prepare_directory();
     flow_.set_initial_condition();
     solids_.set_initial_condition();
+    if (!solids_.empty()) {
+      solids_.stop_bodies_at_rest(flow_.state().vel);
+      flow_.make_solenoidal();
+    }
     open_outputs();
     const auto wall_start = std::chrono::steady_clock::now();
     double dt = 0.0;
@@ -58,6 +66,7 @@ class Simulation {
       if (!write_outputs(dt, false)) return 3;
       if (step_ % cfg_.output.every == 0 && !opt_.quiet) print_progress(dt, wall_start);
     }
+    if (!solids_.empty() && comm_.root()) write_summary_json(cfg_.output.dir + "/particle.csv", cfg_.output.dir + "/summary.json");
     if (comm_.root() && !opt_.quiet) std::printf("done: %ld steps, t = %.6g, output in %s\n", step_, t_, cfg_.output.dir.c_str());
     return 0;
   }
@@ -86,14 +95,47 @@ class Simulation {
     comm_.barrier();
   }
 
-  void open_outputs() { flow_csv_ = CsvWriter(cfg_.output.dir + "/flow.csv", kFlowColumns, comm_.root()); }
+  void open_outputs() {
+    flow_csv_ = CsvWriter(cfg_.output.dir + "/flow.csv", kFlowColumns, comm_.root());
+    if (!solids_.empty()) {
+      particle_csv_ = CsvWriter(cfg_.output.dir + "/particle.csv", particle_columns(), comm_.root());
+      if (!cfg_.output.shape_times.empty()) {
+        if (comm_.root()) fs::create_directories(cfg_.output.dir + "/shapes");
+        shape_index_ = CsvWriter(cfg_.output.dir + "/shapes/index.csv", {"step", "t"}, comm_.root());
+      }
+    }
+  }
+
+  // Particle rows every `every` steps; a cross-section at each requested time once it is reached.
+  void write_particles(bool row) {
+    const auto& times = cfg_.output.shape_times;
+    const bool shape_due = next_shape_ < times.size() && t_ >= times[next_shape_] - 1e-12;
+    if (!row && !shape_due) return;
+    const auto states = tracker_.measure(solids_, flow_.state());
+    if (row)
+      for (size_t n = 0; n < states.size(); ++n) particle_csv_.row(particle_row(step_, t_, int(n), states[n]));
+    if (shape_due) {
+      char name[64];
+      std::snprintf(name, sizeof(name), "/shapes/%08ld.csv", step_);
+      write_shape_sections(cfg_.output.dir + name, grid_, comm_.comm, solids_, states);
+      shape_index_.row({double(step_), t_});
+      while (next_shape_ < times.size() && t_ >= times[next_shape_] - 1e-12) ++next_shape_;
+    }
+  }
+
+  Field3 total_psi() {
+    if (solids_.empty()) return Field3();
+    if (psi_total_.extent(0) == 0) psi_total_ = grid_.make_field("psi");
+    solids_.total_volume_fraction(psi_total_);
+    return psi_total_;
+  }
 
   // Returns false when the solution is no longer finite (the caller stops with an error).
   bool write_outputs(double dt, bool initial) {
     const auto& o = cfg_.output;
     const bool row = initial || step_ % o.every == 0;
     if (row) {
-      const FlowDiagnostics d = flow_.diagnostics(dt);
+      const FlowDiagnostics d = flow_.diagnostics(dt, solids_.max_wave_speed());
       if (!d.finite) {
         if (comm_.root()) std::fprintf(stderr, "error: the velocity is no longer finite at step %ld, t = %.6g\n", step_, t_);
         return false;
@@ -101,10 +143,11 @@ class Simulation {
       last_ = d;
       flow_csv_.row({double(step_), t_, dt, d.cfl, d.bulk_u, d.dpdx, d.max_div, d.kinetic_energy});
     }
+    if (!solids_.empty()) write_particles(row);
     if (o.profiles_every > 0 && step_ % o.profiles_every == 0) {
       char name[64];
       std::snprintf(name, sizeof(name), "/profiles/%08ld.csv", step_);
-      write_profile(o.dir + name, cfg_, grid_, comm_.comm, flow_.state().vel, Field3());
+      write_profile(o.dir + name, cfg_, grid_, comm_.comm, flow_.state().vel, total_psi());
     }
     if (o.fields_every > 0 && step_ % o.fields_every == 0) write_fields();
     return true;
@@ -120,6 +163,7 @@ class Simulation {
       out.push_back({names[c], centred});
     }
     out.push_back({"p", flow_.state().p});
+    if (!solids_.empty()) out.push_back({"psi", total_psi()});
     fields_.write(step_, t_, out, true);
   }
 
@@ -140,8 +184,11 @@ class Simulation {
   Grid grid_;
   FlowSolver flow_;
   SolidPhase solids_;
+  ParticleTracker tracker_;
   FieldWriter fields_;
-  CsvWriter flow_csv_;
+  CsvWriter flow_csv_, particle_csv_, shape_index_;
+  Field3 psi_total_;
+  size_t next_shape_ = 0;
   FlowDiagnostics last_;
   double t_ = 0.0;
   long step_ = 0;

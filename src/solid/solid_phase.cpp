@@ -79,9 +79,30 @@ SolidPhase::SolidPhase(const CaseConfig& cfg, const Grid& grid, const BoundaryCo
 void SolidPhase::set_initial_condition() {
   for (auto& body : bodies_) {
     fill_volume_fraction(body.psi, grid_, body.cfg);
+    bc_->fill_scalar(body.psi);  // periodic images in y and z come from the ghost exchange
     set_identity(body.b);
     set_identity(body.b_prev);
   }
+}
+
+void SolidPhase::stop_bodies_at_rest(const kernels::Velocity& vel) const {
+  for (const auto& body : bodies_) {
+    if (body.cfg.initial_velocity != InitialSolidVelocity::Rest) continue;
+    const Field3 psi = body.psi;
+    for (int c = 0; c < 3; ++c) {
+      const Field3 u = vel.c[c];
+      const int di = c == 0, dj = c == 1, dk = c == 2;
+      // the face lies between cell (i,j,k) and the next one along c
+      Kokkos::parallel_for("eulerfsi::solid::stop_at_rest", grid_.interior().policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+        u(i, j, k) *= 1.0 - 0.5 * (psi(i, j, k) + psi(i + di, j + dj, k + dk));
+      });
+    }
+  }
+}
+
+void SolidPhase::total_volume_fraction(const Field3& out) const {
+  Kokkos::deep_copy(out, 0.0);
+  for (const auto& body : bodies_) kernels::mixture_viscosity_add(out, body.psi, 1.0, grid_.all());
 }
 
 void SolidPhase::advance_substep(const kernels::Velocity& vel, double dt, int substep) {
@@ -97,7 +118,12 @@ void SolidPhase::advance_substep(const kernels::Velocity& vel, double dt, int su
     kernels::rk3_tensor_update(body.b, body.b_rhs, body.b_rhs_old, dt, gamma[substep], zeta[substep], box);
     std::swap(body.psi_rhs, body.psi_rhs_old);
     std::swap(body.b_rhs, body.b_rhs_old);
-    kernels::clip_volume_fraction(body.psi, box);
+    // bounded and conservative: clip to [0, 1], then give the clipped volume back to the interface
+    const double removed = comm_.sum(kernels::clip_volume_fraction(body.psi, box));
+    const double weight = comm_.sum(kernels::interface_weight(body.psi, box));
+    if (removed != 0.0 && weight > 0.0) {
+      kernels::add_to_interface(body.psi, compat::fmax(-1.0, compat::fmin(1.0, removed / weight)), box);
+    }
     kernels::reset_tensor_outside(body.b, body.psi, kPsiReset, box);
     bc_->fill_scalar(body.psi);
     for (int c = 0; c < kernels::kTensorComponents; ++c) bc_->fill_scalar(body.b.c[c]);

@@ -34,7 +34,10 @@ class SolidPhase {
 
   // psi from the initial shape (cell volume fraction by sub-sampling), B = I.
   void set_initial_condition();
-  // Initial velocity "rest": zero velocity inside the solid.
+  // Initial velocity "rest": u_face *= 1 - psi_face for the bodies that start at rest.
+  void stop_bodies_at_rest(const kernels::Velocity& vel) const;
+  // Sum of every body's psi (for output), into `out`.
+  void total_volume_fraction(const Field3& out) const;
   // (i) of the substep: psi and B of every body advanced by one RK3 substep.
   void advance_substep(const kernels::Velocity& vel, double dt, int substep);
   // mu = mu_f + sum_s psi_s (mu_s - mu_f), ghosts included.

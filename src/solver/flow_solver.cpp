@@ -49,17 +49,17 @@ void FlowSolver::build_wall_masks() {
 
 void FlowSolver::set_initial_condition() {
   fill_initial_velocity(cfg_, grid_, state_.vel);
-  Kokkos::deep_copy(state_.p, 0.0);
+  make_solenoidal();
+}
+
+void FlowSolver::make_solenoidal() {
   bc_.fill_velocity(state_.vel, 0.0);
-  // start exactly solenoidal (the sampled profile or a penalized mask may not be)
+  // a sampled profile, the penalized wall or a particle at rest need not be divergence free
   project(1.0, 0.0);
   if (impose_flow_rate_) correct_flow_rate();
   bc_.fill_velocity(state_.vel, 0.0);
   Kokkos::deep_copy(state_.p, 0.0);
-  if (impose_flow_rate_) {
-    // start from the laminar pressure gradient so the first dp/dx row is meaningful
-    dpdx_ = 0.0;
-  }
+  dpdx_ = 0.0;
 }
 
 double FlowSolver::stable_dt(double extra_wave_speed) const {
@@ -132,11 +132,11 @@ double FlowSolver::bulk_velocity() const {
   return comm_.sum(kernels::open_face_sum(state_.vel.c[0], masks_.chi[0], grid_.interior())) / open_faces_;
 }
 
-FlowDiagnostics FlowSolver::diagnostics(double dt) const {
+FlowDiagnostics FlowSolver::diagnostics(double dt, double wave_speed) const {
   const Box box = grid_.interior();
   const auto& u = state_.vel.c;
   FlowDiagnostics d;
-  d.cfl = dt * comm_.max(kernels::max_signal_rate(u[0], u[1], u[2], grid_.h, 0.0, box));
+  d.cfl = dt * comm_.max(kernels::max_signal_rate(u[0], u[1], u[2], grid_.h, wave_speed, box));
   d.bulk_u = bulk_velocity();
   d.dpdx = dpdx_;
   d.max_div = comm_.max(kernels::max_abs_divergence(u[0], u[1], u[2], grid_.h, box));

@@ -39,11 +39,13 @@ class FlowSolver {
   ~FlowSolver();
 
   void set_initial_condition();
+  // Projects the current velocity onto divergence-free fields with the imposed flow rate.
+  void make_solenoidal();
   // Largest stable step: the CFL limit on (|u| + sqrt(G)) / h and the explicit viscous limit.
   double stable_dt(double extra_wave_speed = 0.0) const;
   // One RK3 step of size dt from time t; the solids (if any) advance inside each substep.
   void advance(double t, double dt, SolidPhase* solids = nullptr);
-  FlowDiagnostics diagnostics(double dt) const;
+  FlowDiagnostics diagnostics(double dt, double wave_speed = 0.0) const;
 
   FlowState& state() { return state_; }
   const FlowState& state() const { return state_; }
