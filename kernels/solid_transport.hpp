@@ -46,6 +46,18 @@ KOKKOS_FORCEINLINE_FUNCTION double velocity_gradient_at_centre(const Field3& uA,
   }
 }
 
+// Largest psi on the 19-point star of radius 3 that the WENO fluxes of cell (i,j,k) read: zero
+// means every flux through the cell's faces is exactly zero.
+KOKKOS_FORCEINLINE_FUNCTION double star_max(const Field3& psi, int i, int j, int k) {
+  double m = psi(i, j, k);
+  for (int r = 1; r <= 3; ++r) {
+    m = compat::fmax(m, compat::fmax(psi(i - r, j, k), psi(i + r, j, k)));
+    m = compat::fmax(m, compat::fmax(psi(i, j - r, k), psi(i, j + r, k)));
+    m = compat::fmax(m, compat::fmax(psi(i, j, k - r), psi(i, j, k + r)));
+  }
+  return m;
+}
+
 // rhs = -div_h^WENO(u psi)
 inline void scalar_advection_rhs(const Field3& rhs, const Field3& q, const Velocity& vel, const double h[3],
                                  const Box& box) {
@@ -53,18 +65,26 @@ inline void scalar_advection_rhs(const Field3& rhs, const Field3& q, const Veloc
   const Field3 u = vel.c[0], v = vel.c[1], w = vel.c[2];
   Kokkos::parallel_for("eulerfsi::solid::psi_rhs", box.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
     const double inv_h[3] = {ih0, ih1, ih2};
-    rhs(i, j, k) = -weno_divergence(q, u, v, w, inv_h, i, j, k);
+    // the fluid far from every body: nothing to transport
+    rhs(i, j, k) = star_max(q, i, j, k) == 0.0 ? 0.0 : -weno_divergence(q, u, v, w, inv_h, i, j, k);
   });
 }
 
 // rhs_ab = -div_h^WENO(u B_ab) + (L B + B L^T)_ab for all six components in one pass (u, v, w
-// and the nine gradients are read once per cell).
+// and the nine gradients are read once per cell). Far from the body (psi < psi_min on the whole
+// stencil) B = I was reset and stays I: the rhs is zero there, which also skips most cells.
 struct TensorTransportRhs {
   Tensor6 rhs, b;
   Field3 u, v, w;
+  Field3 psi;
+  double psi_min;
   double inv_h[3];
 
   KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k) const {
+    if (star_max(psi, i, j, k) < psi_min) {
+      for (int s = 0; s < kTensorComponents; ++s) rhs.c[s](i, j, k) = 0.0;
+      return;
+    }
     double L[3][3];
     L[0][0] = velocity_gradient_at_centre<0, 0>(u, inv_h, i, j, k);
     L[0][1] = velocity_gradient_at_centre<0, 1>(u, inv_h, i, j, k);
@@ -90,9 +110,10 @@ struct TensorTransportRhs {
   }
 };
 
-inline void tensor_transport_rhs(const Tensor6& rhs, const Tensor6& b, const Velocity& vel, const double h[3],
-                                 const Box& box) {
-  TensorTransportRhs f{rhs, b, vel.c[0], vel.c[1], vel.c[2], {1.0 / h[0], 1.0 / h[1], 1.0 / h[2]}};
+// psi_min: the volume fraction below which B is reset to I (a negative value computes every cell).
+inline void tensor_transport_rhs(const Tensor6& rhs, const Tensor6& b, const Velocity& vel, const Field3& psi,
+                                 double psi_min, const double h[3], const Box& box) {
+  TensorTransportRhs f{rhs, b, vel.c[0], vel.c[1], vel.c[2], psi, psi_min, {1.0 / h[0], 1.0 / h[1], 1.0 / h[2]}};
   Kokkos::parallel_for("eulerfsi::solid::b_rhs", box.policy(), f);
 }
 

@@ -112,7 +112,7 @@ void SolidPhase::advance_substep(const kernels::Velocity& vel, double dt, int su
   for (auto& body : bodies_) {
     // d psi/dt = -div(u psi);  dB/dt = -div(u B) + L B + B L^T   (WENO5 fluxes, RK3)
     kernels::scalar_advection_rhs(body.psi_rhs, body.psi, vel, grid_.h, box);
-    kernels::tensor_transport_rhs(body.b_rhs, body.b, vel, grid_.h, box);
+    kernels::tensor_transport_rhs(body.b_rhs, body.b, vel, body.psi, kPsiReset, grid_.h, box);
     for (int c = 0; c < kernels::kTensorComponents; ++c) Kokkos::deep_copy(body.b_prev.c[c], body.b.c[c]);
     kernels::rk3_scalar_update(body.psi, body.psi_rhs, body.psi_rhs_old, dt, gamma[substep], zeta[substep], box);
     kernels::rk3_tensor_update(body.b, body.b_rhs, body.b_rhs_old, dt, gamma[substep], zeta[substep], box);

@@ -166,7 +166,7 @@ TEST(SolidTransport, IdentityStaysIdentityUnderTranslation) {
   for (int n = 0; n < 20; ++n)
     for (int s = 0; s < 3; ++s) {
       for (int c = 0; c < 6; ++c) test_support::fill_periodic(b.c[c], m.n);
-      kernels::tensor_transport_rhs(rhs, b, vel, m.h, m.interior());
+      kernels::tensor_transport_rhs(rhs, b, vel, m.field("psi_solid"), -1.0, m.h, m.interior());  // psi_min < 0: every cell
       kernels::rk3_tensor_update(b, rhs, rhs_old, dt, kGamma[s], kZeta[s], m.interior());
       std::swap(rhs, rhs_old);
     }
@@ -204,7 +204,7 @@ TEST(SolidTransport, StretchingIsExactForLinearVelocity) {
     }
     Tensor6 b = m.tensor("b"), rhs = m.tensor("rhs");
     for (int c = 0; c < 6; ++c) Kokkos::deep_copy(b.c[c], bval[c]);
-    kernels::tensor_transport_rhs(rhs, b, vel, m.h, m.interior());
+    kernels::tensor_transport_rhs(rhs, b, vel, m.field("psi_solid"), -1.0, m.h, m.interior());  // psi_min < 0: every cell
     double B[3][3];
     for (int a = 0; a < 3; ++a)
       for (int c = 0; c < 3; ++c) B[a][c] = bval[kernels::tensor_index(a, c)];
@@ -241,7 +241,7 @@ TEST(SolidTransport, SimpleShearMatchesExactDeformation) {
     for (int s = 0; s < 3; ++s) {
       // B is uniform, so a periodic copy is also exact in the sheared y direction
       for (int c = 0; c < 6; ++c) test_support::fill_periodic(b.c[c], m.n);
-      kernels::tensor_transport_rhs(rhs, b, vel, m.h, m.interior());
+      kernels::tensor_transport_rhs(rhs, b, vel, m.field("psi_solid"), -1.0, m.h, m.interior());  // psi_min < 0: every cell
       kernels::rk3_tensor_update(b, rhs, rhs_old, dt, kGamma[s], kZeta[s], m.interior());
       std::swap(rhs, rhs_old);
     }
