@@ -79,16 +79,22 @@ void write_attr(hid_t obj, const char* name, hid_t file_type, hid_t mem_type, co
     throw CheckpointError(std::string("cannot write attribute '") + name + "'");
 }
 
-// Reads a scalar (or small 1-D) attribute of the expected element count; false if absent or unreadable.
-bool read_attr(hid_t obj, const char* name, hid_t mem_type, void* value, hssize_t n = 1) {
-  if (H5Aexists(obj, name) <= 0) return false;
+// Whether a (scalar or small 1-D) attribute of the expected element count was read; an unreadable
+// object header (HDF5's own checksum failed) is not the same as an absent attribute.
+enum class Attr { Read, Absent, Unreadable };
+Attr try_read_attr(hid_t obj, const char* name, hid_t mem_type, void* value, hssize_t n = 1) {
+  const htri_t exists = H5Aexists(obj, name);
+  if (exists == 0) return Attr::Absent;
+  if (exists < 0) return Attr::Unreadable;
   Hid attr(H5Aopen(obj, name, H5P_DEFAULT), H5Aclose);
-  if (!attr.ok()) return false;
+  if (!attr.ok()) return Attr::Unreadable;
   Hid space(H5Aget_space(attr.get()), H5Sclose);
-  if (!space.ok() || H5Sget_simple_extent_npoints(space.get()) != n) return false;
-  return H5Aread(attr.get(), mem_type, value) >= 0;
+  if (!space.ok() || H5Sget_simple_extent_npoints(space.get()) != n) return Attr::Unreadable;
+  return H5Aread(attr.get(), mem_type, value) >= 0 ? Attr::Read : Attr::Unreadable;
 }
-
+bool read_attr(hid_t obj, const char* name, hid_t mem_type, void* value, hssize_t n = 1) {
+  return try_read_attr(obj, name, mem_type, value, n) == Attr::Read;
+}
 // Hyperslab of this rank's x-slab in a global (nx, ny, nz) dataspace; an empty slab selects nothing.
 void select_slab(hid_t fspace, const Grid& g) {
   const hsize_t start[3] = {hsize_t(g.x_offset), 0, 0};
@@ -221,6 +227,13 @@ std::uint64_t global_checksum(MPI_Comm comm, const Grid& g, const std::vector<do
   return all;
 }
 
+// FNV-1a over the bytes: the string's data is raw data, which HDF5 does not checksum for us.
+std::uint64_t text_checksum(const std::string& text) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;
+  for (unsigned char c : text) h = (h ^ c) * 0x100000001b3ULL;
+  return h;
+}
+
 // Owned cells in (x, y, z) order, i.e. exactly this rank's hyperslab of the dataset.
 std::vector<double> pack_interior(const Grid& g, const Field3& f) {
   auto host = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), f);
@@ -295,6 +308,8 @@ void write_string_dataset(hid_t file, const char* name, const std::string& text,
   if (!dset.ok() ||
       H5Dwrite(dset.get(), type.get(), H5S_ALL, H5S_ALL, dxpl, text.empty() ? &zero : text.data()) < 0)
     throw CheckpointError(std::string("cannot write dataset '") + name + "'");
+  const std::uint64_t sum = text_checksum(text);
+  write_attr(dset.get(), "checksum", H5T_STD_U64LE, H5T_NATIVE_UINT64, &sum);
 }
 
 void write_meta(hid_t file, const CheckpointMeta& m, hid_t dxpl) {
@@ -389,7 +404,8 @@ bool dataset_has_dims(hid_t dset, const std::array<int, 3>& cells) {
   return true;
 }
 
-bool read_string_dataset(hid_t file, const char* name, std::string& text) {
+// false if absent or unreadable; `intact` says whether its checksum matched
+bool read_string_dataset(hid_t file, const char* name, std::string& text, bool& intact) {
   if (H5Lexists(file, name, H5P_DEFAULT) <= 0) return false;
   Hid dset(H5Dopen2(file, name, H5P_DEFAULT), H5Dclose);
   if (!dset.ok()) return false;
@@ -398,6 +414,9 @@ bool read_string_dataset(hid_t file, const char* name, std::string& text) {
   std::vector<char> buf(H5Tget_size(type.get()) + 1, '\0');
   if (H5Dread(dset.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, buf.data()) < 0) return false;
   text.assign(buf.data(), strnlen(buf.data(), buf.size()));
+  std::uint64_t sum = 0;
+  if (!read_attr(dset.get(), "checksum", H5T_NATIVE_UINT64, &sum)) return false;
+  intact = sum == text_checksum(text);
   return true;
 }
 
@@ -408,23 +427,31 @@ herr_t collect_scalar(hid_t loc, const char* name, const H5A_info_t*, void* out)
   return 0;
 }
 
-// Reads everything but the field data from an open file; returns a short reason or "".
+const std::string kDamaged = "is corrupt or truncated: ";
+
+// Reads everything but the field data from an open file; returns what is wrong (after the file's name) or "".
 std::string read_meta(hid_t file, CheckpointMeta& m) {
   int version = 0;
   long long step = 0;
-  if (!read_attr(file, kFormatAttr, H5T_NATIVE_INT, &version)) return "not an eulerfsi checkpoint";
-  if (version != kFormatVersion) return "checkpoint format " + std::to_string(version) + " is not supported";
+  const Attr format = try_read_attr(file, kFormatAttr, H5T_NATIVE_INT, &version);
+  if (format == Attr::Unreadable) return kDamaged + hdf5_reason("its root attributes are unreadable");
+  if (format == Attr::Absent) return std::string("is not an eulerfsi checkpoint (no '") + kFormatAttr + "' attribute)";
+  if (version != kFormatVersion)
+    return "has format " + std::to_string(version) + "; this build reads " + std::to_string(kFormatVersion);
   if (!read_attr(file, "step", H5T_NATIVE_LLONG, &step) || !read_attr(file, "t", H5T_NATIVE_DOUBLE, &m.t) ||
       !read_attr(file, "dpdx", H5T_NATIVE_DOUBLE, &m.dpdx) ||
       !read_attr(file, "cells", H5T_NATIVE_INT, m.cells.data(), 3) ||
       !read_attr(file, "nranks", H5T_NATIVE_INT, &m.nranks))
-    return "a step/t/dpdx/cells/nranks attribute is missing or unreadable";
+    return kDamaged + "a step/t/dpdx/cells/nranks attribute is missing or unreadable";
   m.step = long(step);
-  if (!read_string_dataset(file, "config_toml", m.config_toml)) return "dataset 'config_toml' is missing or unreadable";
+  bool intact = false;
+  if (!read_string_dataset(file, "config_toml", m.config_toml, intact))
+    return kDamaged + "dataset 'config_toml' is missing or unreadable";
+  if (!intact) return "is corrupt: config_toml checksum mismatch";
   Hid scalars(H5Gopen2(file, "scalars", H5P_DEFAULT), H5Gclose);
   if (!scalars.ok() ||
       H5Aiterate2(scalars.get(), H5_INDEX_NAME, H5_ITER_INC, nullptr, collect_scalar, &m.scalars) < 0)
-    return "group 'scalars' is missing or unreadable";
+    return kDamaged + "group 'scalars' is missing or unreadable";
   return "";
 }
 
@@ -446,7 +473,7 @@ std::string prevalidate(const std::string& path, const Grid& g,
   Hid file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()), H5Fclose);
   if (!file.ok()) return who + " is corrupt or truncated: " + hdf5_reason("HDF5 cannot open it");
   const std::string bad_meta = read_meta(file.get(), m);
-  if (!bad_meta.empty()) return who + " is corrupt or truncated: " + bad_meta;
+  if (!bad_meta.empty()) return who + " " + bad_meta;
   if (m.cells[0] != g.n[0] || m.cells[1] != g.n[1] || m.cells[2] != g.n[2])
     return who + " has a " + cells_text(m.cells.data()) + " grid but this run has " + cells_text(g.n);
   for (const auto& [name, f] : fields) {

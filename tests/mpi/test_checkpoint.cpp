@@ -1,5 +1,6 @@
 // Checkpoints round-trip bit for bit and refuse, with one message on every rank, anything damaged.
 #include <gtest/gtest.h>
+#include <hdf5.h>
 #include <mpi.h>
 #include <unistd.h>
 
@@ -239,32 +240,61 @@ TEST_F(Checkpoint, GarbageFileIsRefusedNamingIt) {
   EXPECT_EQ(msg, "checkpoint '" + path_ + "' is corrupt or truncated: not an HDF5 file");
 }
 
+// Flips one bit of the first occurrence of `needle` in the file (rank 0); false if it is not there.
+bool flip_in_file(const std::string& path, const std::string& needle, size_t byte_in_needle) {
+  std::vector<char> bytes;
+  {
+    std::ifstream f(path, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(f), {});
+  }
+  const auto at = std::search(bytes.begin(), bytes.end(), needle.begin(), needle.end());
+  if (at == bytes.end()) return false;
+  const auto offset = size_t(at - bytes.begin()) + byte_in_needle;
+  std::fstream f(path, std::ios::binary | std::ios::in | std::ios::out);
+  f.seekp(std::streamoff(offset));
+  const char flipped = char(bytes[offset] ^ 0x10);
+  f.write(&flipped, 1);
+  return bool(f);
+}
+
 TEST_F(Checkpoint, FlippedByteInDataFailsTheChecksum) {
   const Grid g = make_grid(kCells);
   const double marker = 1234.5678;  // eight distinct bytes, repeated over the whole dataset
   eulerfsi::write_checkpoint(path_, g, MPI_COMM_WORLD, sample_meta(1),
                              {{"p", random_field(g, "p", 9)}, {"u", constant_field(g, "u", marker)}});
-  on_root([&] {
-    std::vector<char> bytes;
-    {
-      std::ifstream f(path_, std::ios::binary);
-      bytes.assign(std::istreambuf_iterator<char>(f), {});
-    }
-    std::string run;
-    for (int n = 0; n < 8; ++n) run.append(reinterpret_cast<const char*>(&marker), sizeof(marker));
-    const auto at = std::search(bytes.begin(), bytes.end(), run.begin(), run.end());
-    ASSERT_NE(at, bytes.end()) << "the dataset's data was not found in the file";
-    const auto offset = std::streamoff(at - bytes.begin()) + 3 * 8 + 5;  // inside the fourth value
-    std::fstream f(path_, std::ios::binary | std::ios::in | std::ios::out);
-    f.seekp(offset);
-    const char flipped = char(bytes[size_t(offset)] ^ 0x10);
-    f.write(&flipped, 1);
-  });
+  std::string run;  // eight copies: only the dataset's data holds that
+  for (int n = 0; n < 8; ++n) run.append(reinterpret_cast<const char*>(&marker), sizeof(marker));
+  on_root([&] { ASSERT_TRUE(flip_in_file(path_, run, 3 * 8 + 5)); });  // inside the fourth value
   const Fields in = {{"p", sentinel_field(g, "p")}, {"u", sentinel_field(g, "u")}};
   EXPECT_EQ(read_error(path_, g, in), "checkpoint '" + path_ + "' is corrupt: field 'u' checksum mismatch");
   // refused as a whole: not even the intact field was touched
   EXPECT_EQ(cells_not_equal_to(in[0].second, kGhostSentinel), 0);
   EXPECT_EQ(cells_not_equal_to(in[1].second, kGhostSentinel), 0);
+}
+
+TEST_F(Checkpoint, FlippedByteInConfigTextFailsItsChecksum) {
+  const Grid g = make_grid(kCells);
+  eulerfsi::write_checkpoint(path_, g, MPI_COMM_WORLD, sample_meta(1), {{"u", random_field(g, "u", 1)}});
+  on_root([&] { ASSERT_TRUE(flip_in_file(path_, "\"quoted\" comment", 3)); });
+  EXPECT_EQ(read_error(path_, g, {{"u", sentinel_field(g, "u")}}),
+            "checkpoint '" + path_ + "' is corrupt: config_toml checksum mismatch");
+}
+
+TEST_F(Checkpoint, FlippedByteInMetadataIsCaughtByHdf5) {
+  const Grid g = make_grid(kCells);
+  CheckpointMeta m = sample_meta(1);
+  m.step = 0x0123456789abcdefL;  // eight distinct bytes to find the attribute's value by
+  eulerfsi::write_checkpoint(path_, g, MPI_COMM_WORLD, m, {{"u", random_field(g, "u", 1)}});
+  on_root([&] { ASSERT_TRUE(flip_in_file(path_, std::string(reinterpret_cast<const char*>(&m.step), 8), 2)); });
+  const std::string msg = read_error(path_, g, {{"u", sentinel_field(g, "u")}});
+  EXPECT_EQ(msg.rfind("checkpoint '" + path_ + "' is corrupt or truncated: ", 0), 0u) << msg;
+}
+
+TEST_F(Checkpoint, OtherHdf5FileIsNotACheckpoint) {
+  const Grid g = make_grid(kCells);
+  on_root([&] { H5Fclose(H5Fcreate(path_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT)); });
+  EXPECT_EQ(read_error(path_, g, {{"u", sentinel_field(g, "u")}}),
+            "checkpoint '" + path_ + "' is not an eulerfsi checkpoint (no 'eulerfsi_checkpoint' attribute)");
 }
 
 TEST_F(Checkpoint, OtherGridIsRefusedNamingBoth) {
