@@ -28,7 +28,8 @@ inline double max_signal_rate(const Field3& u, const Field3& v, const Field3& w,
   Kokkos::parallel_reduce("eulerfsi::diag::cfl", box.policy(), KOKKOS_LAMBDA(int i, int j, int k, double& m) {
     const double r = compat::fmax((compat::fabs(u(i, j, k)) + c) * ix,
                                   compat::fmax((compat::fabs(v(i, j, k)) + c) * iy, (compat::fabs(w(i, j, k)) + c) * iz));
-    m = compat::fmax(m, r);
+    // NaN compares false: map it (and Inf) to the largest double so a blow-up is seen here
+    m = compat::fmax(m, r <= 1e300 ? r : 1e308);
   }, Kokkos::Max<double>(result));
   return result;
 }

@@ -8,6 +8,10 @@
 #include <stdexcept>
 #include <vector>
 
+#include "app/fault_check.hpp"
+#include "app/restart.hpp"
+#include "app/signals.hpp"
+#include "io/checkpoint.hpp"
 #include "io/csv_writer.hpp"
 #include "io/field_writer.hpp"
 #include "io/profiles.hpp"
@@ -37,6 +41,9 @@ Grid make_grid(const CaseConfig& cfg, const Comm& comm) {
 namespace {
 
 const std::vector<std::string> kFlowColumns = {"step", "t", "dt", "cfl", "bulk_u", "dpdx", "max_div", "kinetic_energy"};
+// An adaptive step that can no longer keep the CFL number below this has blown up.
+constexpr double kBlowUpCfl = 1.0;
+constexpr int kExitBlowUp = 3;
 
 class Simulation {
  public:
@@ -47,63 +54,183 @@ class Simulation {
 
   int run() {
     prepare_directory();
+    if (opt_.restart) {
+      restore();
+    } else {
+      start_fresh();
+    }
+    open_outputs(opt_.restart);
+    if (!opt_.restart) write_outputs(0.0, true);
+    install_stop_handlers();
+    const auto wall_start = std::chrono::steady_clock::now();
+    const double done_at_start = fraction_done();
+    while (!finished()) {
+      const double dt_stable = flow_.stable_dt(solids_.max_wave_speed());
+      double dt = cfg_.time.dt > 0.0 ? cfg_.time.dt : dt_stable;
+      if (blown_up(dt, dt_stable)) return report_blow_up(dt, dt_stable);
+      if (t_ + dt > cfg_.time.t_end) dt = cfg_.time.t_end - t_;  // land exactly on t_end
+      flow_.advance(t_, dt, solids_.empty() ? nullptr : &solids_);
+      t_ += dt;
+      ++step_;
+      write_outputs(dt, false);
+      if (cfg_.output.checkpoint_every > 0 && step_ % cfg_.output.checkpoint_every == 0) write_restart_file();
+      if (step_ % cfg_.output.every == 0 && !opt_.quiet) print_progress(dt, wall_start, done_at_start);
+      if (const int sig = agreed_stop_signal()) return stop_on_signal(sig);
+    }
+    // a final check: the last step may have produced the first non-finite value
+    const double dt_stable = flow_.stable_dt(solids_.max_wave_speed());
+    if (blown_up(dt_stable, dt_stable)) return report_blow_up(dt_stable, dt_stable);
+    if (cfg_.output.checkpoint_every > 0) write_restart_file();
+    if (!solids_.empty() && comm_.root()) write_summary_json(dir() + "/particle.csv", dir() + "/summary.json");
+    if (comm_.root() && !opt_.quiet) std::printf("done: %ld steps, t = %.6g, output in %s\n", step_, t_, dir().c_str());
+    return 0;
+  }
+
+ private:
+  const std::string& dir() const { return cfg_.output.dir; }
+  std::string checkpoint_path() const { return dir() + "/checkpoint.h5"; }
+
+  bool finished() const {
+    if (cfg_.time.max_steps > 0 && step_ >= cfg_.time.max_steps) return true;
+    return t_ >= cfg_.time.t_end * (1.0 - 1e-14);
+  }
+
+  void start_fresh() {
     flow_.set_initial_condition();
     solids_.set_initial_condition();
     if (!solids_.empty()) {
       solids_.stop_bodies_at_rest(flow_.state().vel);
       flow_.make_solenoidal();
     }
-    open_outputs();
-    const auto wall_start = std::chrono::steady_clock::now();
-    double dt = 0.0;
-    write_outputs(dt, true);
-    while (!finished()) {
-      dt = cfg_.time.dt > 0.0 ? cfg_.time.dt : flow_.stable_dt(solids_.max_wave_speed());
-      if (t_ + dt > cfg_.time.t_end) dt = cfg_.time.t_end - t_;  // land exactly on t_end
-      flow_.advance(t_, dt, solids_.empty() ? nullptr : &solids_);
-      t_ += dt;
-      ++step_;
-      if (!write_outputs(dt, false)) return 3;
-      if (step_ % cfg_.output.every == 0 && !opt_.quiet) print_progress(dt, wall_start);
-    }
-    if (!solids_.empty() && comm_.root()) write_summary_json(cfg_.output.dir + "/particle.csv", cfg_.output.dir + "/summary.json");
-    if (comm_.root() && !opt_.quiet) std::printf("done: %ld steps, t = %.6g, output in %s\n", step_, t_, cfg_.output.dir.c_str());
-    return 0;
-  }
-
- private:
-  bool finished() const {
-    if (cfg_.time.max_steps > 0 && step_ >= cfg_.time.max_steps) return true;
-    return t_ >= cfg_.time.t_end * (1.0 - 1e-14);
   }
 
   void prepare_directory() {
-    const std::string& dir = cfg_.output.dir;
+    // rank 0 touches the file system; every rank learns the outcome, or the others would wait forever
+    std::string error;
     if (comm_.root()) {
-      std::error_code ec;
-      fs::create_directories(dir, ec);
-      if (ec || !fs::is_directory(dir)) throw std::runtime_error("cannot create output directory '" + dir + "': " + ec.message());
-      // the resolved configuration lives with the results
-      const std::string tmp = dir + "/config.resolved.toml.tmp";
-      std::ofstream out(tmp);
-      out << to_toml(cfg_);
-      out.close();
-      if (!out) throw std::runtime_error("cannot write into output directory '" + dir + "'");
-      fs::rename(tmp, dir + "/config.resolved.toml");
-      if (cfg_.output.profiles_every > 0) fs::create_directories(dir + "/profiles");
-    }
-    comm_.barrier();
-  }
-
-  void open_outputs() {
-    flow_csv_ = CsvWriter(cfg_.output.dir + "/flow.csv", kFlowColumns, comm_.root());
-    if (!solids_.empty()) {
-      particle_csv_ = CsvWriter(cfg_.output.dir + "/particle.csv", particle_columns(), comm_.root());
-      if (!cfg_.output.shape_times.empty()) {
-        if (comm_.root()) fs::create_directories(cfg_.output.dir + "/shapes");
-        shape_index_ = CsvWriter(cfg_.output.dir + "/shapes/index.csv", {"step", "t"}, comm_.root());
+      try {
+        create_run_directory();
+      } catch (const std::exception& e) {
+        error = e.what();
       }
     }
+    int len = int(error.size());
+    MPI_Bcast(&len, 1, MPI_INT, 0, comm_.comm);
+    error.resize(size_t(len));
+    MPI_Bcast(error.data(), len, MPI_CHAR, 0, comm_.comm);
+    if (!error.empty()) throw std::runtime_error(error);
+  }
+
+  void create_run_directory() const {
+    std::error_code ec;
+    fs::create_directories(dir(), ec);
+    if (ec || !fs::is_directory(dir()))
+      throw std::runtime_error("cannot create output directory '" + dir() + "': " + (ec ? ec.message() : "not a directory"));
+    // a fresh run never mixes its series with an older run's: refuse rather than overwrite
+    if (!opt_.restart && fs::exists(checkpoint_path()))
+      throw std::runtime_error("output directory '" + dir() + "' holds a run with a checkpoint; continue it with "
+                               "--restart, or choose another --out");
+    // the resolved configuration lives with the results
+    const std::string tmp = dir() + "/config.resolved.toml.tmp";
+    std::ofstream out(tmp);
+    out << to_toml(cfg_);
+    out.close();
+    if (!out) {
+      fs::remove(tmp, ec);
+      throw std::runtime_error("cannot write into output directory '" + dir() + "' (permissions or disk full?)");
+    }
+    fs::rename(tmp, dir() + "/config.resolved.toml");
+    if (cfg_.output.profiles_every > 0) fs::create_directories(dir() + "/profiles");
+  }
+
+  // Every field a step starts from, under the names the checkpoint stores.
+  std::vector<std::pair<std::string, Field3>> state_fields() {
+    auto& s = flow_.state();
+    std::vector<std::pair<std::string, Field3>> f = {{"u", s.u()}, {"v", s.v()}, {"w", s.w()}, {"p", s.p}};
+    static const char* comp[6] = {"xx", "yy", "zz", "xy", "xz", "yz"};
+    for (size_t n = 0; n < solids_.bodies().size(); ++n) {
+      auto& body = solids_.bodies()[n];
+      const std::string tag = "solid" + std::to_string(n);
+      f.emplace_back(tag + "/psi", body.psi);
+      for (int c = 0; c < 6; ++c) f.emplace_back(tag + "/B" + comp[c], body.b.c[c]);
+    }
+    return f;
+  }
+
+  void write_restart_file() {
+    CheckpointMeta meta;
+    meta.step = step_;
+    meta.t = t_;
+    meta.dpdx = flow_.dpdx();
+    meta.config_toml = to_toml(cfg_);
+    meta.scalars["next_shape"] = double(next_shape_);
+    const auto xs = tracker_.unwrapped_x();
+    for (size_t n = 0; n < xs.size(); ++n) meta.scalars["solid" + std::to_string(n) + ".x_unwrapped"] = xs[n];
+    write_checkpoint(checkpoint_path(), grid_, comm_.comm, meta, state_fields());
+  }
+
+  void restore() {
+    const std::string path = opt_.restart_file.empty() ? checkpoint_path() : opt_.restart_file;
+    const CheckpointMeta meta = read_checkpoint(path, grid_, comm_.comm, state_fields());
+    const CaseConfig before = parse_case_string(meta.config_toml, {}, path);
+    const auto changed = differing_physical_keys(before, cfg_);
+    if (!changed.empty()) {
+      std::string list;
+      for (const auto& k : changed) list += "\n  " + k;
+      throw ConfigError("cannot restart from '" + path + "': the physical configuration differs in" + list +
+                        "\n(time stepping and output may change on restart; the physics may not)");
+    }
+    step_ = meta.step;
+    t_ = meta.t;
+    flow_.set_dpdx(meta.dpdx);
+    next_shape_ = size_t(meta.scalars.count("next_shape") ? meta.scalars.at("next_shape") : 0.0);
+    std::vector<double> xs;
+    for (size_t n = 0; n < solids_.bodies().size(); ++n)
+      xs.push_back(meta.scalars.at("solid" + std::to_string(n) + ".x_unwrapped"));
+    tracker_.set_unwrapped_x(xs);
+    // ghosts are not stored: refill them exactly as a step leaves them
+    flow_.boundaries().fill_velocity(flow_.state().vel, t_);
+    flow_.boundaries().fill_scalar(flow_.state().p);
+    for (auto& body : solids_.bodies()) {
+      flow_.boundaries().fill_scalar(body.psi);
+      for (int c = 0; c < 6; ++c) flow_.boundaries().fill_scalar(body.b.c[c]);
+    }
+    // the series continue from the checkpoint's step: later rows belong to the lost future
+    if (comm_.root()) {
+      for (const char* name : {"/flow.csv", "/particle.csv", "/shapes/index.csv"}) truncate_series_after(dir() + name, step_);
+      fields_.set_history(field_history_until(dir(), step_));
+    }
+    if (comm_.root() && !opt_.quiet) std::printf("restarted from %s at step %ld, t = %.6g\n", path.c_str(), step_, t_);
+  }
+
+  void open_outputs(bool append) {
+    auto open = [&](const std::string& path, const std::vector<std::string>& cols) {
+      return CsvWriter(path, cols, comm_.root(), append && fs::exists(path));
+    };
+    flow_csv_ = open(dir() + "/flow.csv", kFlowColumns);
+    if (!solids_.empty()) {
+      particle_csv_ = open(dir() + "/particle.csv", particle_columns());
+      if (!cfg_.output.shape_times.empty()) {
+        if (comm_.root()) fs::create_directories(dir() + "/shapes");
+        shape_index_ = open(dir() + "/shapes/index.csv", {"step", "t"});
+      }
+    }
+  }
+
+  void write_outputs(double dt, bool initial) {
+    const auto& o = cfg_.output;
+    const bool row = initial || step_ % o.every == 0;
+    if (row) {
+      last_ = flow_.diagnostics(dt, solids_.max_wave_speed());
+      flow_csv_.row({double(step_), t_, dt, last_.cfl, last_.bulk_u, last_.dpdx, last_.max_div, last_.kinetic_energy});
+    }
+    if (!solids_.empty()) write_particles(row);
+    if (o.profiles_every > 0 && step_ % o.profiles_every == 0) {
+      char name[64];
+      std::snprintf(name, sizeof(name), "/profiles/%08ld.csv", step_);
+      write_profile(dir() + name, cfg_, grid_, comm_.comm, flow_.state().vel, total_psi());
+    }
+    if (o.fields_every > 0 && step_ % o.fields_every == 0) write_fields();
   }
 
   // Particle rows every `every` steps; a cross-section at each requested time once it is reached.
@@ -117,7 +244,7 @@ class Simulation {
     if (shape_due) {
       char name[64];
       std::snprintf(name, sizeof(name), "/shapes/%08ld.csv", step_);
-      write_shape_sections(cfg_.output.dir + name, grid_, comm_.comm, solids_, states);
+      write_shape_sections(dir() + name, grid_, comm_.comm, solids_, states);
       shape_index_.row({double(step_), t_});
       while (next_shape_ < times.size() && t_ >= times[next_shape_] - 1e-12) ++next_shape_;
     }
@@ -130,49 +257,70 @@ class Simulation {
     return psi_total_;
   }
 
-  // Returns false when the solution is no longer finite (the caller stops with an error).
-  bool write_outputs(double dt, bool initial) {
-    const auto& o = cfg_.output;
-    const bool row = initial || step_ % o.every == 0;
-    if (row) {
-      const FlowDiagnostics d = flow_.diagnostics(dt, solids_.max_wave_speed());
-      if (!d.finite) {
-        if (comm_.root()) std::fprintf(stderr, "error: the velocity is no longer finite at step %ld, t = %.6g\n", step_, t_);
-        return false;
-      }
-      last_ = d;
-      flow_csv_.row({double(step_), t_, dt, d.cfl, d.bulk_u, d.dpdx, d.max_div, d.kinetic_energy});
-    }
-    if (!solids_.empty()) write_particles(row);
-    if (o.profiles_every > 0 && step_ % o.profiles_every == 0) {
-      char name[64];
-      std::snprintf(name, sizeof(name), "/profiles/%08ld.csv", step_);
-      write_profile(o.dir + name, cfg_, grid_, comm_.comm, flow_.state().vel, total_psi());
-    }
-    if (o.fields_every > 0 && step_ % o.fields_every == 0) write_fields();
-    return true;
-  }
-
   void write_fields() {
     const Box box = grid_.interior();
     std::vector<NamedField> out;
     const char* names[3] = {"u", "v", "w"};
     for (int c = 0; c < 3; ++c) {
-      Field3 centred = grid_.make_field(names[c]);
-      kernels::face_to_centre(centred, flow_.state().vel.c[c], c, box);
-      out.push_back({names[c], centred});
+      if (centred_[c].extent(0) == 0) centred_[c] = grid_.make_field(names[c]);
+      kernels::face_to_centre(centred_[c], flow_.state().vel.c[c], c, box);
+      out.push_back({names[c], centred_[c]});
     }
     out.push_back({"p", flow_.state().p});
     if (!solids_.empty()) out.push_back({"psi", total_psi()});
     fields_.write(step_, t_, out, true);
   }
 
-  void print_progress(double dt, std::chrono::steady_clock::time_point start) const {
-    if (!comm_.root()) return;
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  // Non-finite values or a CFL number the step cannot keep below 1: the run has blown up.
+  bool blown_up(double dt, double dt_stable) const {
+    const double cfl = cfg_.time.cfl * dt / dt_stable;
+    return !(std::isfinite(dt_stable) && dt_stable > 1e-300 && cfl <= kBlowUpCfl);
+  }
+
+  int report_blow_up(double dt, double dt_stable) {
+    auto fields = state_fields();
+    std::string where = locate_non_finite(fields, grid_, comm_.comm);
+    if (where.empty()) {
+      char buf[160];
+      std::snprintf(buf, sizeof(buf), "the CFL number would be %.3g with dt = %.3g (limit %.3g)",
+                    cfg_.time.cfl * dt / dt_stable, dt, kBlowUpCfl);
+      where = buf;
+    }
+    if (comm_.root()) {
+      std::fprintf(stderr, "error: the run blew up at step %ld, t = %.6g: %s\n", step_, t_, where.c_str());
+      if (fs::exists(checkpoint_path()))
+        std::fprintf(stderr, "the last good checkpoint is kept: %s\n", checkpoint_path().c_str());
+    }
+    return kExitBlowUp;
+  }
+
+  // The signal any rank received (all ranks stop together).
+  int agreed_stop_signal() const {
+    int mine = stop_requested(), any = 0;
+    MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, comm_.comm);
+    return any;
+  }
+
+  int stop_on_signal(int sig) {
+    write_restart_file();
+    if (comm_.root())
+      std::fprintf(stderr, "stopped by signal %d at step %ld, t = %.6g; checkpoint written: %s (continue with --restart)\n",
+                   sig, step_, t_, checkpoint_path().c_str());
+    return 128 + sig;
+  }
+
+  double fraction_done() const {
     double done = t_ / cfg_.time.t_end;
     if (cfg_.time.max_steps > 0) done = std::max(done, double(step_) / cfg_.time.max_steps);
-    const double eta = done > 0 ? wall * (1.0 - done) / done : 0.0;
+    return std::min(done, 1.0);
+  }
+
+  // ETA from this session's pace (a restarted run starts counting at its checkpoint).
+  void print_progress(double dt, std::chrono::steady_clock::time_point start, double done_at_start) const {
+    if (!comm_.root()) return;
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double done = fraction_done(), progressed = done - done_at_start;
+    const double eta = progressed > 0.0 ? wall * (1.0 - done) / progressed : 0.0;
     std::printf("step %8ld  t %10.5f  dt %9.3e  cfl %5.3f  max|div u| %8.2e  bulk %8.5f  dp/dx %10.4e  wall %8.1fs  eta %8.1fs\n",
                 step_, t_, dt, last_.cfl, last_.max_div, last_.bulk_u, last_.dpdx, wall, eta);
     std::fflush(stdout);
@@ -187,9 +335,9 @@ class Simulation {
   ParticleTracker tracker_;
   FieldWriter fields_;
   CsvWriter flow_csv_, particle_csv_, shape_index_;
-  Field3 psi_total_;
-  size_t next_shape_ = 0;
   FlowDiagnostics last_;
+  Field3 psi_total_, centred_[3];
+  size_t next_shape_ = 0;
   double t_ = 0.0;
   long step_ = 0;
 };

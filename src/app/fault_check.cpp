@@ -1,0 +1,34 @@
+#include "app/fault_check.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+namespace eulerfsi {
+
+std::string locate_non_finite(const std::vector<std::pair<std::string, Field3>>& fields, const Grid& g, MPI_Comm comm) {
+  int rank = 0, nranks = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &nranks);
+  char msg[256] = "";
+  const Box b = g.interior();
+  for (const auto& [name, f] : fields) {
+    auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), f);
+    for (int i = b.lo[0]; i < b.hi[0] && !msg[0]; ++i)
+      for (int j = b.lo[1]; j < b.hi[1] && !msg[0]; ++j)
+        for (int k = b.lo[2]; k < b.hi[2] && !msg[0]; ++k)
+          if (!std::isfinite(h(i, j, k)))
+            std::snprintf(msg, sizeof(msg), "field '%s' is %s at cell (%d, %d, %d), x = %.4g, y = %.4g, z = %.4g",
+                          name.c_str(), std::isnan(h(i, j, k)) ? "NaN" : "Inf", i - kGhost + g.x_offset, j - kGhost,
+                          k - kGhost, g.centre(0, i), g.centre(1, j), g.centre(2, k));
+    if (msg[0]) break;
+  }
+  // the lowest rank with a finding reports
+  const int mine = msg[0] ? rank : nranks;
+  int first = nranks;
+  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, comm);
+  if (first == nranks) return "";
+  MPI_Bcast(msg, sizeof(msg), MPI_CHAR, first, comm);
+  return msg;
+}
+
+}  // namespace eulerfsi

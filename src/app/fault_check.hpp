@@ -1,0 +1,18 @@
+#pragma once
+// Finds where a field stopped being finite, for the error message of a blown-up run.
+#include <mpi.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "grid/grid.hpp"
+
+namespace eulerfsi {
+
+// "field 'u' is nan at cell (i, j, k), x = .., y = .., z = .." for the first bad value (lowest
+// rank, then storage order), or an empty string when every owned value is finite. Collective.
+std::string locate_non_finite(const std::vector<std::pair<std::string, Field3>>& fields, const Grid& grid,
+                              MPI_Comm comm);
+
+}  // namespace eulerfsi

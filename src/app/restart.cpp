@@ -1,0 +1,106 @@
+#include "app/restart.hpp"
+
+#include <hdf5.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+namespace eulerfsi {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// "section.key" -> value text of the canonical TOML that to_toml writes ([[solid]] numbered).
+std::map<std::string, std::string> flatten(const CaseConfig& cfg) {
+  std::map<std::string, std::string> out;
+  std::istringstream in(to_toml(cfg));
+  std::string line, section;
+  int solid = -1;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    if (line.rfind("[[solid]]", 0) == 0) {
+      section = "solid[" + std::to_string(++solid) + "]";
+    } else if (line[0] == '[') {
+      section = line.substr(1, line.find(']') - 1);
+    } else if (const auto eq = line.find('='); eq != std::string::npos) {
+      auto trim = [](std::string s) {
+        s.erase(0, s.find_first_not_of(" \t"));
+        s.erase(s.find_last_not_of(" \t") + 1);
+        return s;
+      };
+      out[section + "." + trim(line.substr(0, eq))] = trim(line.substr(eq + 1));
+    }
+  }
+  return out;
+}
+
+bool physical(const std::string& key) {
+  return key.rfind("domain.", 0) == 0 || key.rfind("flow.", 0) == 0 || key.rfind("solid[", 0) == 0;
+}
+
+}  // namespace
+
+std::vector<std::string> differing_physical_keys(const CaseConfig& before, const CaseConfig& now) {
+  const auto a = flatten(before), b = flatten(now);
+  std::vector<std::string> keys;
+  for (const auto& [k, v] : a)
+    if (physical(k) && (!b.count(k) || b.at(k) != v)) keys.push_back(k + " (" + v + " -> " + (b.count(k) ? b.at(k) : "absent") + ")");
+  for (const auto& [k, v] : b)
+    if (physical(k) && !a.count(k)) keys.push_back(k + " (absent -> " + v + ")");
+  return keys;
+}
+
+void truncate_series_after(const std::string& csv_path, long step) {
+  std::ifstream in(csv_path);
+  if (!in) return;
+  std::string header, line, kept;
+  std::getline(in, header);
+  while (std::getline(in, line)) {
+    if (line.empty()) continue;
+    const long s = std::strtol(line.c_str(), nullptr, 10);
+    // a row torn by a crash has fewer fields than the header: dropped with the rest
+    const auto fields = std::count(line.begin(), line.end(), ',');
+    if (s <= step && fields == std::count(header.begin(), header.end(), ',')) kept += line + "\n";
+  }
+  in.close();
+  const std::string tmp = csv_path + ".tmp";
+  {
+    std::ofstream out(tmp);
+    out << header << "\n" << kept;
+    if (!out) throw std::runtime_error("cannot rewrite '" + csv_path + "' for the restart");
+  }
+  fs::rename(tmp, csv_path);
+}
+
+std::vector<std::pair<long, double>> field_history_until(const std::string& run_dir, long step) {
+  std::vector<std::pair<long, double>> out;
+  const fs::path dir = fs::path(run_dir) / "fields";
+  if (!fs::is_directory(dir)) return out;
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    if (entry.path().extension() != ".h5" || name.size() != 11) continue;
+    const long s = std::strtol(name.c_str(), nullptr, 10);
+    if (s > step) continue;
+    const hid_t f = H5Fopen(entry.path().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (f < 0) continue;  // a snapshot torn by a crash is left out of the index
+    double t = 0.0;
+    const hid_t a = H5Aopen(f, "time", H5P_DEFAULT);
+    if (a >= 0) {
+      H5Aread(a, H5T_NATIVE_DOUBLE, &t);
+      H5Aclose(a);
+      out.emplace_back(s, t);
+    }
+    H5Fclose(f);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace eulerfsi

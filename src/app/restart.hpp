@@ -1,0 +1,23 @@
+#pragma once
+// Continuing a run: which configuration changes a restart may not make, and how the time
+// series and the field index are brought back to the checkpoint's step.
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "config/case_config.hpp"
+
+namespace eulerfsi {
+
+// Keys of [domain], [flow] and [[solid]] whose values differ between two resolved configurations
+// (time stepping and output may change on restart; the physics may not).
+std::vector<std::string> differing_physical_keys(const CaseConfig& before, const CaseConfig& now);
+
+// Drops the rows of a CSV time series whose first column (step) is beyond `step`, atomically.
+// A missing file is created with just `header` later by the writer: nothing to do here.
+void truncate_series_after(const std::string& csv_path, long step);
+
+// (step, t) of the field snapshots fields/NNNNNNNN.h5 at or before `step`, oldest first.
+std::vector<std::pair<long, double>> field_history_until(const std::string& run_dir, long step);
+
+}  // namespace eulerfsi
