@@ -151,8 +151,8 @@ class Simulation {
     for (size_t n = 0; n < solids_.bodies().size(); ++n) {
       auto& body = solids_.bodies()[n];
       const std::string tag = "solid" + std::to_string(n);
-      f.emplace_back(tag + "/psi", body.psi);
-      for (int c = 0; c < 6; ++c) f.emplace_back(tag + "/B" + comp[c], body.b.c[c]);
+      f.emplace_back(tag + "_psi", body.psi);
+      for (int c = 0; c < 6; ++c) f.emplace_back(tag + "_B" + comp[c], body.b.c[c]);
     }
     return f;
   }

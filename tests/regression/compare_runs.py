@@ -29,7 +29,10 @@ def compare_series(a, b, name, rtol, atol, skip):
         if col in skip:
             continue
         diff = np.abs(ta[col] - tb[col])
-        scale = np.maximum(np.abs(ta[col]), np.abs(tb[col]))
+        # round-off is relative to the size of the terms, not of a result that happens to be ~0:
+        # floor the scale at the column's largest magnitude
+        colmax = max(np.max(np.abs(ta[col])), np.max(np.abs(tb[col])))
+        scale = np.maximum(np.maximum(np.abs(ta[col]), np.abs(tb[col])), colmax)
         bad = diff > atol + rtol * scale
         rel = np.max(diff / np.maximum(scale, 1e-300))
         worst = max(worst, rel)
