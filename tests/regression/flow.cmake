@@ -16,3 +16,8 @@ foreach(np 1 2)
                    ${CMAKE_BINARY_DIR}/regression/restart_np${np} ${np})
   set_tests_properties(restart_bit_for_bit_np${np} PROPERTIES ENVIRONMENT "${EULERFSI_TEST_ENV}" PROCESSORS ${np})
 endforeach()
+# every bad input refused with one clear message, a non-zero exit and nothing overwritten
+add_test(NAME bad_input_refused
+         COMMAND bash ${REG}/bad_input.sh $<TARGET_FILE:eulerfsi> ${CMAKE_CURRENT_SOURCE_DIR}
+                 ${CMAKE_BINARY_DIR}/regression/bad_input)
+set_tests_properties(bad_input_refused PROPERTIES ENVIRONMENT "${EULERFSI_TEST_ENV}" PROCESSORS 2)

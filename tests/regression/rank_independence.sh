@@ -6,5 +6,5 @@ bin=$1; case_file=$2; work=$3; shift 3
 here=$(cd "$(dirname "$0")" && pwd)
 rm -rf "$work"; mkdir -p "$work"
 mpiexec -n 1 --oversubscribe "$bin" run "$case_file" --out "$work/np1" --quiet
-mpiexec -n 2 --oversubscribe "$bin" run "$case_file" --out "$work/np2" --quiet
+OMP_NUM_THREADS=1 mpiexec -n 2 --oversubscribe "$bin" run "$case_file" --out "$work/np2" --quiet
 /usr/bin/python3 "$here/compare_runs.py" "$work/np1" "$work/np2" "$@"
