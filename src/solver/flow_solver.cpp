@@ -55,7 +55,7 @@ void FlowSolver::set_initial_condition() {
 void FlowSolver::make_solenoidal() {
   bc_.fill_velocity(state_.vel, 0.0);
   // a sampled profile, the penalized wall or a particle at rest need not be divergence free
-  project(1.0, 0.0);
+  project(1.0);
   if (impose_flow_rate_) correct_flow_rate();
   bc_.fill_velocity(state_.vel, 0.0);
   Kokkos::deep_copy(state_.p, 0.0);
@@ -88,7 +88,7 @@ void FlowSolver::advance(double t, double dt, SolidPhase* solids) {
       solids->mixture_viscosity(mu_, mu_fluid_);
     }
     // (ii) explicit momentum right-hand side: advection + viscous (+ elastic stress)
-    kernels::momentum_rhs(rhs_new_, vel, mu_, grid_.h, box);
+    kernels::momentum_rhs(rhs_new_, vel, mu_, grid_.h, box, solids == nullptr);
     if (solids) solids->add_elastic_force(rhs_new_);
     // (iii) predictor with implicit penalization of the pipe wall
     const double penal = alpha_dt / cfg_.flow.penalization_eta;
@@ -99,25 +99,22 @@ void FlowSolver::advance(double t, double dt, SolidPhase* solids) {
     }
     bc_.fill_velocity(vel, t_next);
     // (iv) projection
-    project(alpha_dt, t_next);
+    project(alpha_dt);
     // (v) constant flow rate: the uniform correction is the mean pressure gradient times alpha dt
-    if (impose_flow_rate_) {
-      const double du = correct_flow_rate();
-      dpdx_step -= du / dt;
-      bc_.fill_velocity(vel, t_next);
-    }
+    if (impose_flow_rate_) dpdx_step -= correct_flow_rate() / dt;
+    bc_.fill_velocity(vel, t_next);
   }
   if (impose_flow_rate_) dpdx_ = dpdx_step;
 }
 
-void FlowSolver::project(double alpha_dt, double t_next) {
+// Leaves the ghosts of the velocity stale: the caller refills them once it is done with it.
+void FlowSolver::project(double alpha_dt) {
   const Box box = grid_.interior();
   auto& vel = state_.vel;
   kernels::divergence(state_.p, vel.c[0], vel.c[1], vel.c[2], grid_.h, 1.0 / alpha_dt, box);
   poisson_->solve(state_.p);
   bc_.fill_scalar(state_.p);
   kernels::subtract_gradient(vel.c[0], vel.c[1], vel.c[2], state_.p, grid_.h, alpha_dt, box);
-  bc_.fill_velocity(vel, t_next);
 }
 
 // Adds du to u on the open faces so the bulk velocity is U_b again; returns du.

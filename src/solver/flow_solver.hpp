@@ -61,7 +61,7 @@ class FlowSolver {
 
  private:
   void build_wall_masks();
-  void project(double alpha_dt, double t_end_substep);
+  void project(double alpha_dt);
   double correct_flow_rate();
 
   CaseConfig cfg_;
