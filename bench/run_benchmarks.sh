@@ -13,6 +13,7 @@ reps=${REPS:-3}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 
+source "$root/ci/env.sh"  # KOKKOS_ROOT (for the table header), MPI settings
 export OMP_PROC_BIND=false
 flags=(--benchmark_repetitions="$reps" --benchmark_report_aggregates_only=true --benchmark_min_time=0.3
        --benchmark_out_format=json "$@")
@@ -34,5 +35,5 @@ python3 "$here/support/make_results.py" "$out" "$here/RESULTS.md" \
   --model "$(lscpu | sed -n 's/^Model name: *//p' | head -1)" --cores "$(nproc)" \
   --commit "$(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)" \
   --load "$load_before -> $load_after" --reps "$reps" \
-  --toolchain "$(c++ --version | head -1), $(sed -n 's/^CMAKE_CXX_FLAGS_RELEASE:STRING=//p' "$build/CMakeCache.txt") $(sed -n 's/^CMAKE_CXX_FLAGS:STRING=//p' "$build/CMakeCache.txt"), Kokkos $(basename "${KOKKOS_ROOT:-$(sed -n 's/^Kokkos_DIR:PATH=//p' "$build/CMakeCache.txt")}")"
+  --toolchain "$(c++ --version | head -1), $(sed -n 's/^CMAKE_CXX_FLAGS_RELEASE:STRING=//p' "$build/CMakeCache.txt") $(sed -n 's/^CMAKE_CXX_FLAGS:STRING=//p' "$build/CMakeCache.txt"), Kokkos $(basename "$KOKKOS_ROOT")"
 echo "wrote $here/RESULTS.md" >&2
