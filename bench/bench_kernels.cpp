@@ -1,0 +1,232 @@
+// Each main kernel of the time step alone, on the fields of a real pipe case (laminar flow at
+// Re = 100, cubic cells, length [Nx/Ny, 1, 1]; the solid kernels with the quick start's sphere
+// d = 0.2 at r/R = 0.2828, We = 1, after one step so that B != I and psi has an interface).
+//
+// Counters: ns_per_cell (per call, per interior cell of the global grid) and GB/s, an
+// *effective* bandwidth: the minimal bytes the kernel must move (each field it reads or writes
+// streamed exactly once, stencil neighbours from cache, no write-allocate, the 2D wall masks
+// neglected) divided by the time. Compare it with bench_triad's GB/s (also counted without
+// write-allocate): a memory-bound kernel that streams optimally sits near it, a kernel far
+// below it is compute, latency or traffic bound (reads its fields several times).
+// The Poisson solve is in bench_poisson. The time is the slowest rank's.
+#include <benchmark/benchmark.h>
+#include <mpi.h>
+
+#include <chrono>
+#include <string>
+
+#include "app/simulation.hpp"
+#include "config/case_config.hpp"
+#include "core/compat.hpp"
+#include "kernels/boundary.hpp"
+#include "kernels/elastic_force.hpp"
+#include "kernels/momentum.hpp"
+#include "kernels/projection.hpp"
+#include "kernels/solid_transport.hpp"
+#include "kernels/time_update.hpp"
+#include "parallel/comm.hpp"
+#include "solid/solid_phase.hpp"
+#include "solver/flow_solver.hpp"
+
+namespace {
+using namespace eulerfsi;
+
+CaseConfig pipe_case(int nx, int ny, int nz, bool particle) {
+  CaseConfig cfg;
+  cfg.source = "<bench>";
+  cfg.domain.geometry = Geometry::Pipe;
+  cfg.domain.cells = {nx, ny, nz};
+  cfg.domain.length = {double(nx) / ny, 1.0, 1.0};
+  cfg.flow.Re = 100.0;
+  cfg.flow.initial = InitialFlow::Laminar;
+  if (particle) {
+    SolidConfig s;
+    s.shape = SolidShape::Sphere;
+    s.diameter = 0.2;
+    s.center = {0.5 * cfg.domain.length[0], 0.2828 * 0.5, 0.0};
+    s.We = 1.0;
+    cfg.solids.push_back(s);
+  }
+  return cfg;
+}
+
+// A pipe case ready to run: solenoidal laminar flow, and with a particle one step already taken.
+struct PipeCase {
+  Comm comm;
+  CaseConfig cfg;
+  Grid grid;
+  FlowSolver flow;
+  SolidPhase solids;
+
+  PipeCase(const benchmark::State& state, bool particle)
+      : cfg(pipe_case(int(state.range(0)), int(state.range(1)), int(state.range(2)), particle)),
+        grid(make_grid(cfg, comm)), flow(cfg, grid, comm), solids(cfg, grid, flow.boundaries(), comm) {
+    flow.set_initial_condition();
+    solids.set_initial_condition();
+    if (particle) {
+      flow.make_solenoidal();
+      flow.advance(0.0, flow.stable_dt(solids.max_wave_speed()), &solids);
+    }
+    compat::fence();
+  }
+  kernels::Velocity make_velocity(const char* label) const {
+    return kernels::Velocity{{grid.make_field(label), grid.make_field(label), grid.make_field(label)}};
+  }
+};
+
+// Times `kernel` (fenced, slowest rank) and sets ns_per_cell and GB/s from `bytes_per_call`
+// (this rank's bytes; summed over ranks for the aggregate bandwidth).
+template <class Kernel>
+void time_kernel(benchmark::State& state, const Grid& g, double bytes_per_call, Kernel&& kernel) {
+  kernel();  // warm-up
+  compat::fence();
+  double total_s = 0.0;
+  for (auto _ : state) {
+    MPI_Barrier(MPI_COMM_WORLD);
+    const auto t0 = std::chrono::steady_clock::now();
+    kernel();
+    compat::fence();
+    double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    MPI_Allreduce(MPI_IN_PLACE, &sec, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+    state.SetIterationTime(sec);
+    total_s += sec;
+  }
+  MPI_Allreduce(MPI_IN_PLACE, &bytes_per_call, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  const double calls = double(state.iterations());
+  state.counters["ns_per_cell"] = benchmark::Counter(1e9 * total_s / (calls * double(g.global_cells())));
+  state.counters["GB/s"] = benchmark::Counter(1e-9 * bytes_per_call * calls / total_s);
+  state.counters["threads"] = benchmark::Counter(ExecSpace().concurrency());
+  state.SetLabel(compat::default_backend_name());
+}
+
+// bytes of `doubles` per interior cell of this rank
+double cell_bytes(const Grid& g, int doubles) { return 8.0 * doubles * double(g.interior().size()); }
+
+// momentum_rhs, 3 components. Minimal: read u, v, w, mu; write rhs_u, rhs_v, rhs_w = 7 doubles.
+// (As written it is three sweeps, each reading all of u, v, w, mu: 15 doubles of traffic.)
+void BM_MomentumRhs(benchmark::State& state) {
+  PipeCase c(state, false);
+  const auto rhs = c.make_velocity("rhs");
+  const Field3 mu = c.flow.viscosity();
+  const Box box = c.grid.interior();
+  time_kernel(state, c.grid, cell_bytes(c.grid, 7),
+              [&] { kernels::momentum_rhs(rhs, c.flow.state().vel, mu, c.grid.h, box); });
+}
+
+// rk3_update of the 3 components (as the solver calls it, one sweep per component). Per
+// component: read u, rhs_new, rhs_old; write u = 4 doubles; 12 doubles per cell in all.
+void BM_Rk3Update(benchmark::State& state) {
+  PipeCase c(state, false);
+  const auto rhs_new = c.make_velocity("rhs_new");
+  const auto rhs_old = c.make_velocity("rhs_old");
+  const Box box = c.grid.interior();
+  kernels::momentum_rhs(rhs_new, c.flow.state().vel, c.flow.viscosity(), c.grid.h, box);
+  for (int d = 0; d < 3; ++d) Kokkos::deep_copy(rhs_old.c[d], rhs_new.c[d]);
+  const double dt = 1e-6;  // keeps u near the laminar profile over many calls
+  time_kernel(state, c.grid, cell_bytes(c.grid, 12), [&] {
+    for (int d = 0; d < 3; ++d)
+      kernels::rk3_update(c.flow.state().vel.c[d], rhs_new.c[d], rhs_old.c[d], c.flow.masks().chi[d], dt, 8.0 / 15.0,
+                          -17.0 / 60.0, 0.3 * dt / 1e-8, box, "eulerfsi::bench::rk3_update");
+  });
+}
+
+// divergence: read u, v, w; write div = 4 doubles.
+void BM_Divergence(benchmark::State& state) {
+  PipeCase c(state, false);
+  const Field3 out = c.grid.make_field("div");
+  const auto& u = c.flow.state().vel.c;
+  time_kernel(state, c.grid, cell_bytes(c.grid, 4),
+              [&] { kernels::divergence(out, u[0], u[1], u[2], c.grid.h, 1.0, c.grid.interior()); });
+}
+
+// subtract_gradient: read phi, u, v, w; write u, v, w = 7 doubles.
+void BM_SubtractGradient(benchmark::State& state) {
+  PipeCase c(state, false);
+  const Field3 phi = c.grid.make_field("phi");
+  const auto& u = c.flow.state().vel.c;
+  // a realistic potential with its ghosts filled, as after the Poisson solve
+  kernels::divergence(phi, u[0], u[1], u[2], c.grid.h, 1.0, c.grid.interior());
+  c.flow.boundaries().fill_scalar(phi);
+  time_kernel(state, c.grid, cell_bytes(c.grid, 7),
+              [&] { kernels::subtract_gradient(u[0], u[1], u[2], phi, c.grid.h, 1e-6, c.grid.interior()); });
+}
+
+// fill_ghosts of u, v, w in y and z with the pipe's wall rules (the kernel calls of
+// BoundaryConditions::fill_velocity without the x halo exchange). Minimal: every ghost value
+// written once from one owned value read: 2 doubles per ghost value, kGhost layers on each
+// side of each wall direction. ns_per_cell is per interior cell, like every other kernel.
+void BM_FillGhosts(benchmark::State& state) {
+  PipeCase c(state, false);
+  const Grid& g = c.grid;
+  const auto& vel = c.flow.state().vel;
+  const double e0 = g.ext(0), e1 = g.ext(1), e2 = g.ext(2);
+  const double ghosts_per_component = 2.0 * kGhost * (e0 * e2 + e0 * e1);  // y slabs + z slabs
+  time_kernel(state, g, 3 * ghosts_per_component * 2 * 8.0, [&] {
+    for (int dir = 1; dir <= 2; ++dir)
+      for (int d = 0; d < 3; ++d)
+        kernels::fill_ghosts(vel.c[d], dir, g.n[dir], d == dir ? kernels::GhostRule::Normal : kernels::GhostRule::Tangent,
+                             0.0, 0.0);
+  });
+}
+
+// BoundaryConditions::fill_velocity: the x halo exchange (MPI, through host buffers; to itself
+// on one rank) plus the y/z ghost kernels above. Minimal bytes: the y/z ghosts as above plus,
+// per component, 2 kGhost x-planes of e1 x e2 read and written.
+void BM_FillVelocity(benchmark::State& state) {
+  PipeCase c(state, false);
+  const Grid& g = c.grid;
+  const double e0 = g.ext(0), e1 = g.ext(1), e2 = g.ext(2);
+  const double ghosts_per_component = 2.0 * kGhost * (e0 * e2 + e0 * e1 + e1 * e2);
+  time_kernel(state, g, 3 * ghosts_per_component * 2 * 8.0,
+              [&] { c.flow.boundaries().fill_velocity(c.flow.state().vel, 0.0); });
+}
+
+// scalar_advection_rhs (WENO5 psi transport) with the sphere present. Minimal: read psi, u, v,
+// w; write rhs = 5 doubles (the far field, skipped by star_max, reads only psi).
+void BM_ScalarAdvectionRhs(benchmark::State& state) {
+  PipeCase c(state, true);
+  const auto& body = c.solids.bodies()[0];
+  const Field3 rhs = c.grid.make_field("psi_rhs");
+  time_kernel(state, c.grid, cell_bytes(c.grid, 5), [&] {
+    kernels::scalar_advection_rhs(rhs, body.psi, c.flow.state().vel, c.grid.h, c.grid.interior());
+  });
+}
+
+// tensor_transport_rhs (WENO5 advection + stretching of the six B components). Minimal: read
+// 6 B, u, v, w, psi; write 6 rhs = 16 doubles.
+void BM_TensorTransportRhs(benchmark::State& state) {
+  PipeCase c(state, true);
+  const auto& body = c.solids.bodies()[0];
+  kernels::Tensor6 rhs;
+  for (int s = 0; s < kernels::kTensorComponents; ++s) rhs.c[s] = c.grid.make_field("b_rhs");
+  time_kernel(state, c.grid, cell_bytes(c.grid, 16), [&] {
+    kernels::tensor_transport_rhs(rhs, body.b, c.flow.state().vel, body.psi, 1e-6, c.grid.h, c.grid.interior());
+  });
+}
+
+// add_elastic_force (one body, 3 components). Minimal: read psi, 6 B, 6 B_prev, 3 rhs; write
+// 3 rhs = 19 doubles. (As written: three sweeps, each reading psi, B and B_prev: 45 doubles.)
+void BM_AddElasticForce(benchmark::State& state) {
+  PipeCase c(state, true);
+  const auto& body = c.solids.bodies()[0];
+  const auto rhs = c.make_velocity("rhs");
+  time_kernel(state, c.grid, cell_bytes(c.grid, 19), [&] {
+    kernels::add_elastic_force(rhs, body.psi, body.b, body.b_prev, body.G, c.grid.h, c.grid.interior());
+  });
+}
+
+#define EULERFSI_KERNEL_BENCH(fn)                                                                            \
+  BENCHMARK(fn)->ArgNames({"nx", "ny", "nz"})->Args({64, 64, 64})->Args({128, 64, 64})->UseManualTime()->Unit( \
+      benchmark::kMillisecond)
+
+EULERFSI_KERNEL_BENCH(BM_MomentumRhs);
+EULERFSI_KERNEL_BENCH(BM_Rk3Update);
+EULERFSI_KERNEL_BENCH(BM_Divergence);
+EULERFSI_KERNEL_BENCH(BM_SubtractGradient);
+EULERFSI_KERNEL_BENCH(BM_FillGhosts);
+EULERFSI_KERNEL_BENCH(BM_FillVelocity);
+EULERFSI_KERNEL_BENCH(BM_ScalarAdvectionRhs);
+EULERFSI_KERNEL_BENCH(BM_TensorTransportRhs);
+EULERFSI_KERNEL_BENCH(BM_AddElasticForce);
+
+}  // namespace

@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# Runs the benchmarks (triad, whole step, kernels, Poisson) at OMP_NUM_THREADS=1 and 2 and
+# writes bench/RESULTS.md: medians of --benchmark_repetitions runs, beside the triad bandwidth.
+# Usage: bench/run_benchmarks.sh [build dir (default build/)] [extra Google Benchmark flags...]
+# Build first with ci/build. Set THREADS="1 2 4" to change the thread counts, REPS for repetitions.
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+root=$(cd "$here/.." && pwd)
+build=${1:-$root/build}
+shift || true
+threads=${THREADS:-"1 2"}
+reps=${REPS:-3}
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+
+source "$root/ci/env.sh"  # KOKKOS_ROOT (for the table header), MPI settings
+export OMP_PROC_BIND=false
+flags=(--benchmark_repetitions="$reps" --benchmark_report_aggregates_only=true --benchmark_min_time=0.3
+       --benchmark_out_format=json "$@")
+load_before=$(cut -d' ' -f1-3 /proc/loadavg)
+for t in $threads; do
+  for b in triad step kernels poisson; do
+    exe="$build/bench/bench_$b"
+    [ -x "$exe" ] || { echo "missing $exe: build with ci/build first" >&2; exit 1; }
+    extra=()
+    # the FFTW_MEASURE plans take minutes to make; the estimated ones are what the solver uses
+    [ "$b" = poisson ] && extra=(--benchmark_filter='measure:0')
+    echo "== bench_$b, OMP_NUM_THREADS=$t" >&2
+    OMP_NUM_THREADS=$t "$exe" "${flags[@]}" "${extra[@]}" --benchmark_out="$out/${b}_t$t.json" >&2
+  done
+done
+load_after=$(cut -d' ' -f1-3 /proc/loadavg)
+
+python3 "$here/support/make_results.py" "$out" "$here/RESULTS.md" \
+  --model "$(lscpu | sed -n 's/^Model name: *//p' | head -1)" --cores "$(nproc)" \
+  --commit "$(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)" \
+  --load "$load_before -> $load_after" --reps "$reps" \
+  --toolchain "$(c++ --version | head -1), $(sed -n 's/^CMAKE_CXX_FLAGS_RELEASE:STRING=//p' "$build/CMakeCache.txt") $(sed -n 's/^CMAKE_CXX_FLAGS:STRING=//p' "$build/CMakeCache.txt"), Kokkos $(basename "$KOKKOS_ROOT")"
+echo "wrote $here/RESULTS.md" >&2

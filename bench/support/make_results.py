@@ -1,0 +1,129 @@
+#!/usr/bin/env python3
+"""Turns the Google Benchmark JSON files of run_benchmarks.sh into the tables of RESULTS.md.
+
+Only the part between the results markers is rewritten; the text around it (the
+interpretation) is kept, so a re-run refreshes the numbers and nothing else."""
+import argparse
+import datetime
+import glob
+import json
+import os
+import re
+
+BEGIN, END = "<!-- results:begin -->", "<!-- results:end -->"
+
+# how often each kernel runs in one RK3 step (3 substeps); fill_velocity: after the predictor,
+# after the projection and after the flow-rate correction in every substep
+CALLS_PER_STEP = {
+    "MomentumRhs": 3, "Rk3Update": 3, "Divergence": 3, "SubtractGradient": 3, "FillGhosts": 9,
+    "FillVelocity": 9, "ScalarAdvectionRhs": 3, "TensorTransportRhs": 3, "AddElasticForce": 3,
+    "PoissonSolve": 3,
+}
+NAMES = {
+    "MomentumRhs": "momentum_rhs (3 comp.)", "Rk3Update": "rk3_update (3 comp.)", "Divergence": "divergence",
+    "SubtractGradient": "subtract_gradient", "FillGhosts": "fill_ghosts y,z (u,v,w)",
+    "FillVelocity": "fill_velocity (x halo + y,z ghosts)", "ScalarAdvectionRhs": "scalar_advection_rhs (psi)",
+    "TensorTransportRhs": "tensor_transport_rhs (B)", "AddElasticForce": "add_elastic_force",
+    "PoissonSolve": "Poisson solve (FFTW, estimate)",
+}
+
+
+def parse_args():
+    p = argparse.ArgumentParser()
+    p.add_argument("json_dir")
+    p.add_argument("results_md")
+    p.add_argument("--model", default="?")
+    p.add_argument("--cores", default="?")
+    p.add_argument("--commit", default="?")
+    p.add_argument("--load", default="?")
+    p.add_argument("--reps", default="?")
+    p.add_argument("--toolchain", default="?")
+    return p.parse_args()
+
+
+def medians(path):
+    with open(path) as f:
+        data = json.load(f)
+    rows = [b for b in data["benchmarks"] if b.get("aggregate_name", "median") == "median"]
+    return data.get("context", {}), rows
+
+
+def grid_of(run_name):
+    a = dict(re.findall(r"(\w+):(\d+)", run_name))
+    return f"{a['nx']}x{a['ny']}x{a['nz']}", a
+
+
+def fmt(x, digits=3):
+    if x is None:
+        return "-"
+    return f"{x:.{digits}g}" if abs(x) < 1000 else f"{x:.0f}"
+
+
+def main():
+    args = parse_args()
+    triad, rows, context = {}, [], {}
+    for path in sorted(glob.glob(os.path.join(args.json_dir, "*.json"))):
+        kind, threads = re.match(r"(\w+?)_t(\d+)\.json", os.path.basename(path)).groups()
+        threads = int(threads)
+        context, runs = medians(path)
+        for r in runs:
+            name = r["run_name"]
+            if kind == "triad":
+                triad[threads] = r["GB/s"]
+                triad_wa = r["GB/s_with_write_allocate"]
+                rows.append((0, "", name, threads, "triad a = b + s c, 3 x 64 MiB", None, None, None, r["GB/s"]))
+                continue
+            grid, a = grid_of(name)
+            fn = re.match(r"BM_(\w+)", name).group(1)
+            if kind == "step":
+                label = f"**whole RK3 step {grid}{' + sphere' if a.get('particle') == '1' else ''}**"
+                rows.append((1, grid, name, threads, label, r["ns_per_cell_step"], 1, r["ns_per_cell_step"], None))
+            else:
+                calls = CALLS_PER_STEP.get(fn, 1)
+                ns = r["ns_per_cell"]
+                order = 3 if fn == "PoissonSolve" else 2
+                rows.append((order, grid, name, threads, f"{NAMES.get(fn, fn)} {grid}", ns, calls, ns * calls,
+                             r.get("GB/s")))
+    # steps first, then kernels in the order they were run, Poisson, triad last
+    seen = {}
+    for i, r in enumerate(rows):
+        seen.setdefault(r[2], i)
+    rows.sort(key=lambda r: ({1: 0, 2: 1, 3: 2, 0: 3}[r[0]], r[1] != "64x64x64" and r[0] == 2, seen[r[2]], r[3]))
+
+    lines = [BEGIN, ""]
+    lines.append(f"Machine: {args.model}, {args.cores} cores (shared with other users: timings are noisy).  ")
+    lines.append(f"Date: {datetime.date.today().isoformat()}, commit {args.commit}, {args.toolchain}, "
+                 f"Kokkos OpenMP backend, OMP_PROC_BIND=false, 1 MPI rank.  ")
+    lines.append(f"Every number is the **median of {args.reps} repetitions** "
+                 f"(`--benchmark_repetitions={args.reps} --benchmark_report_aggregates_only=true`); "
+                 f"load average before -> after the run: {args.load}.")
+    lines.append("")
+    lines.append("ns/cell is per call and per interior cell; ns/cell/step multiplies it by the calls in one RK3 "
+                 "step (3 substeps). GB/s is the effective bandwidth from the *minimal* bytes a kernel must move "
+                 "(the count is in bench/bench_kernels.cpp above each benchmark); the triad counts 24 B per element "
+                 "without write-allocate, the same convention.")
+    lines.append("")
+    lines.append("| benchmark | threads | ns/cell (per call) | calls/step | ns/cell/step | GB/s | triad GB/s |")
+    lines.append("|---|---:|---:|---:|---:|---:|---:|")
+    for order, grid, name, threads, label, ns, calls, ns_step, gbs in rows:
+        lines.append(f"| {label} | {threads} | {fmt(ns)} | {calls if calls else '-'} | {fmt(ns_step)} | "
+                     f"{fmt(gbs)} | {fmt(triad.get(threads))} |")
+    lines += ["", END]
+    block = "\n".join(lines)
+
+    text = ""
+    if os.path.exists(args.results_md):
+        with open(args.results_md) as f:
+            text = f.read()
+    if BEGIN in text and END in text:
+        text = text[: text.index(BEGIN)] + block + text[text.index(END) + len(END):]
+    else:
+        text = ("# Benchmark results\n\nProduced by `bench/run_benchmarks.sh` (numbers between the markers are "
+                "rewritten on every run; the interpretation below is not).\n\n" + block + "\n\n## Interpretation\n\n"
+                "(to be written)\n")
+    with open(args.results_md, "w") as f:
+        f.write(text)
+
+
+if __name__ == "__main__":
+    main()
