@@ -10,55 +10,61 @@ namespace eulerfsi::kernels {
 
 enum class GhostRule { Periodic, Even, Tangent, Normal };
 
-// f at the index `idx` with its `dir` component replaced by s.
-KOKKOS_FORCEINLINE_FUNCTION double& along(const Field3& f, const int idx[3], int dir, int s) {
-  return dir == 0 ? f(s, idx[1], idx[2]) : (dir == 1 ? f(idx[0], s, idx[2]) : f(idx[0], idx[1], s));
-}
+// The ghost layers of one line of f along DIR (the other two indices fixed), storage index s.
+template <int DIR>
+struct GhostLine {
+  Field3 f;
+  int n;  // owned cells along DIR
+  GhostRule rule;
+  double wall_lo, wall_hi;
 
-// n: owned cells along `dir`; the ghost slabs along `dir` are filled over every other index.
-inline void fill_ghosts(const Field3& f, int dir, int n, GhostRule rule, double wall_lo, double wall_hi) {
-  const int G = kGhost;
-  const int e0 = static_cast<int>(f.extent(0)), e1 = static_cast<int>(f.extent(1)), e2 = static_cast<int>(f.extent(2));
-  // iterate m over [0, G] on the chosen axis: G+1 layers covers the extra wall-face layer of Normal
-  int hi[3] = {e0, e1, e2};
-  hi[dir] = G + 1;
-  Policy3 policy({0, 0, 0}, {hi[0], hi[1], hi[2]});
-  Kokkos::parallel_for("eulerfsi::boundary::fill_ghosts", policy, KOKKOS_LAMBDA(int a, int b, int c) {
-    int idx[3] = {a, b, c};
-    const int m = idx[dir];
-    const int lo_first = G;          // first owned index
-    const int hi_last = G + n - 1;   // last owned index
+  KOKKOS_FORCEINLINE_FUNCTION double& at(int a, int b, int s) const {
+    return DIR == 1 ? f(a, s, b) : f(a, b, s);
+  }
+  KOKKOS_INLINE_FUNCTION void operator()(int a, int b) const {
+    constexpr int G = kGhost;
+    const int lo = G, hi = G + n - 1;  // first and last owned index
     switch (rule) {
       case GhostRule::Periodic:
-        if (m < G) {
-          along(f, idx, dir, lo_first - 1 - m) = along(f, idx, dir, hi_last - m);
-          along(f, idx, dir, hi_last + 1 + m) = along(f, idx, dir, lo_first + m);
+        for (int m = 0; m < G; ++m) {
+          at(a, b, lo - 1 - m) = at(a, b, hi - m);
+          at(a, b, hi + 1 + m) = at(a, b, lo + m);
         }
         break;
       case GhostRule::Even:
-        if (m < G) {
-          along(f, idx, dir, lo_first - 1 - m) = along(f, idx, dir, lo_first + m);
-          along(f, idx, dir, hi_last + 1 + m) = along(f, idx, dir, hi_last - m);
+        for (int m = 0; m < G; ++m) {
+          at(a, b, lo - 1 - m) = at(a, b, lo + m);
+          at(a, b, hi + 1 + m) = at(a, b, hi - m);
         }
         break;
       case GhostRule::Tangent:
-        if (m < G) {
-          along(f, idx, dir, lo_first - 1 - m) = 2.0 * wall_lo - along(f, idx, dir, lo_first + m);
-          along(f, idx, dir, hi_last + 1 + m) = 2.0 * wall_hi - along(f, idx, dir, hi_last - m);
+        for (int m = 0; m < G; ++m) {
+          at(a, b, lo - 1 - m) = 2.0 * wall_lo - at(a, b, lo + m);
+          at(a, b, hi + 1 + m) = 2.0 * wall_hi - at(a, b, hi - m);
         }
         break;
       case GhostRule::Normal:
-        // low wall face is index G-1, high wall face is index G+n-1 (the last owned face)
-        if (m == 0) {
-          along(f, idx, dir, lo_first - 1) = 0.0;
-          along(f, idx, dir, hi_last) = 0.0;
-        } else {
-          if (m < G) along(f, idx, dir, lo_first - 1 - m) = -along(f, idx, dir, lo_first - 1 + m);
-          along(f, idx, dir, hi_last + m) = -along(f, idx, dir, hi_last - m);
-        }
+        // the low wall face is index G-1, the high wall face index G+n-1 (the last owned face)
+        at(a, b, lo - 1) = 0.0;
+        at(a, b, hi) = 0.0;
+        for (int m = 1; m < G; ++m) at(a, b, lo - 1 - m) = -at(a, b, lo - 1 + m);
+        for (int m = 1; m <= G; ++m) at(a, b, hi + m) = -at(a, b, hi - m);
         break;
     }
-  });
+  }
+};
+
+// n: owned cells along `dir` (1 or 2); the ghost layers along `dir` are filled over every
+// (x, other) index, ghosts included, so edges and corners follow.
+inline void fill_ghosts(const Field3& f, int dir, int n, GhostRule rule, double wall_lo, double wall_hi) {
+  const int e0 = static_cast<int>(f.extent(0));
+  const int eb = static_cast<int>(f.extent(dir == 1 ? 2 : 1));
+  const Policy2 plane({0, 0}, {e0, eb});
+  if (dir == 1) {
+    Kokkos::parallel_for("eulerfsi::boundary::ghosts_y", plane, GhostLine<1>{f, n, rule, wall_lo, wall_hi});
+  } else {
+    Kokkos::parallel_for("eulerfsi::boundary::ghosts_z", plane, GhostLine<2>{f, n, rule, wall_lo, wall_hi});
+  }
 }
 
 }  // namespace eulerfsi::kernels

@@ -4,6 +4,7 @@
 // on the MAC grid with the stencil of the viscous term in kernels/momentum.hpp: S_DD is
 // differenced between the two cells of the D-face, S_DE (E != D) is averaged from the four
 // cells around each edge and differenced across the face.
+#include "core/launch.hpp"
 #include "core/types.hpp"
 #include "kernels/momentum.hpp"
 #include "kernels/offsets.hpp"
@@ -63,18 +64,18 @@ struct ElasticForce {
 inline void add_elastic_force(const Velocity& rhs, const Field3& psi, const Tensor6& b, const Tensor6& b_prev, double G,
                               const double h[3], const Box& box) {
   const double ih0 = 1.0 / h[0], ih1 = 1.0 / h[1], ih2 = 1.0 / h[2];
-  Kokkos::parallel_for("eulerfsi::solid::elastic_u", box.policy(),
+  for_each_cell("eulerfsi::solid::elastic_u", box,
                        ElasticForce<0>{rhs.c[0], psi, b, b_prev, G, {ih0, ih1, ih2}});
-  Kokkos::parallel_for("eulerfsi::solid::elastic_v", box.policy(),
+  for_each_cell("eulerfsi::solid::elastic_v", box,
                        ElasticForce<1>{rhs.c[1], psi, b, b_prev, G, {ih0, ih1, ih2}});
-  Kokkos::parallel_for("eulerfsi::solid::elastic_w", box.policy(),
+  for_each_cell("eulerfsi::solid::elastic_w", box,
                        ElasticForce<2>{rhs.c[2], psi, b, b_prev, G, {ih0, ih1, ih2}});
 }
 
 // mu += psi dmu: the caller starts from mu = mu_f and adds each body with dmu = mu_s - mu_f,
 // giving mu = (1 - sum psi) mu_f + sum psi mu_s.
 inline void mixture_viscosity_add(const Field3& mu, const Field3& psi, double dmu, const Box& box) {
-  Kokkos::parallel_for("eulerfsi::solid::mixture_viscosity", box.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+  for_each_cell("eulerfsi::solid::mixture_viscosity", box, KOKKOS_LAMBDA(int i, int j, int k) {
     mu(i, j, k) += psi(i, j, k) * dmu;
   });
 }

@@ -2,6 +2,7 @@
 // Local (this rank's) reductions over owned cells for the flow diagnostics; the driver sums
 // or maxes them across ranks.
 #include "core/compat.hpp"
+#include "core/launch.hpp"
 #include "core/types.hpp"
 #include "kernels/time_update.hpp"
 
@@ -11,7 +12,7 @@ namespace eulerfsi::kernels {
 inline double max_abs_divergence(const Field3& u, const Field3& v, const Field3& w, const double h[3], const Box& box) {
   const double ix = 1.0 / h[0], iy = 1.0 / h[1], iz = 1.0 / h[2];
   double result = 0.0;
-  Kokkos::parallel_reduce("eulerfsi::diag::max_div", box.policy(), KOKKOS_LAMBDA(int i, int j, int k, double& m) {
+  reduce_cells("eulerfsi::diag::max_div", box, KOKKOS_LAMBDA(int i, int j, int k, double& m) {
     const double d = (u(i, j, k) - u(i - 1, j, k)) * ix + (v(i, j, k) - v(i, j - 1, k)) * iy +
                      (w(i, j, k) - w(i, j, k - 1)) * iz;
     m = compat::fmax(m, compat::fabs(d));
@@ -25,7 +26,7 @@ inline double max_signal_rate(const Field3& u, const Field3& v, const Field3& w,
                               const Box& box) {
   const double ix = 1.0 / h[0], iy = 1.0 / h[1], iz = 1.0 / h[2];
   double result = 0.0;
-  Kokkos::parallel_reduce("eulerfsi::diag::cfl", box.policy(), KOKKOS_LAMBDA(int i, int j, int k, double& m) {
+  reduce_cells("eulerfsi::diag::cfl", box, KOKKOS_LAMBDA(int i, int j, int k, double& m) {
     const double r = compat::fmax((compat::fabs(u(i, j, k)) + c) * ix,
                                   compat::fmax((compat::fabs(v(i, j, k)) + c) * iy, (compat::fabs(w(i, j, k)) + c) * iz));
     // NaN compares false: map it (and Inf) to the largest double so a blow-up is seen here
@@ -38,7 +39,7 @@ inline double max_signal_rate(const Field3& u, const Field3& v, const Field3& w,
 inline double open_face_sum(const Field3& u, const Mask2& chi_u, const Box& box) {
   const bool has_mask = chi_u.extent(0) > 0;
   double s = 0.0;
-  Kokkos::parallel_reduce("eulerfsi::diag::flow_rate", box.policy(), KOKKOS_LAMBDA(int i, int j, int k, double& su) {
+  reduce_cells("eulerfsi::diag::flow_rate", box, KOKKOS_LAMBDA(int i, int j, int k, double& su) {
     su += (has_mask ? 1.0 - chi_u(j, k) : 1.0) * u(i, j, k);
   }, Kokkos::Sum<double>(s));
   return s;
@@ -47,7 +48,7 @@ inline double open_face_sum(const Field3& u, const Mask2& chi_u, const Box& box)
 // u(i,j,k) += du on the open x-faces: x-independent, so div u is untouched
 inline void add_open_x_velocity(const Field3& u, const Mask2& chi_u, double du, const Box& box) {
   const bool has_mask = chi_u.extent(0) > 0;
-  Kokkos::parallel_for("eulerfsi::flow_rate::correct", box.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+  for_each_cell("eulerfsi::flow_rate::correct", box, KOKKOS_LAMBDA(int i, int j, int k) {
     u(i, j, k) += has_mask ? du * (1.0 - chi_u(j, k)) : du;
   });
 }
@@ -55,7 +56,7 @@ inline void add_open_x_velocity(const Field3& u, const Mask2& chi_u, double du, 
 // sum over faces of (u^2 + v^2 + w^2) / 2
 inline double kinetic_energy_sum(const Field3& u, const Field3& v, const Field3& w, const Box& box) {
   double result = 0.0;
-  Kokkos::parallel_reduce("eulerfsi::diag::kinetic_energy", box.policy(),
+  reduce_cells("eulerfsi::diag::kinetic_energy", box,
                           KOKKOS_LAMBDA(int i, int j, int k, double& s) {
     s += 0.5 * (u(i, j, k) * u(i, j, k) + v(i, j, k) * v(i, j, k) + w(i, j, k) * w(i, j, k));
   }, Kokkos::Sum<double>(result));
@@ -65,7 +66,7 @@ inline double kinetic_energy_sum(const Field3& u, const Field3& v, const Field3&
 // max |f| and whether any value is not finite, for the blow-up guard
 inline bool all_finite(const Field3& f, const Box& box) {
   int bad = 0;
-  Kokkos::parallel_reduce("eulerfsi::diag::finite", box.policy(), KOKKOS_LAMBDA(int i, int j, int k, int& b) {
+  reduce_cells("eulerfsi::diag::finite", box, KOKKOS_LAMBDA(int i, int j, int k, int& b) {
     if (!compat::isfinite(f(i, j, k))) b += 1;
   }, Kokkos::Sum<int>(bad));
   return bad == 0;

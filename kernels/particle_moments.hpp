@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/compat.hpp"
+#include "core/launch.hpp"
 #include "core/types.hpp"
 #include "kernels/momentum.hpp"
 #include "kernels/offsets.hpp"
@@ -48,7 +49,7 @@ namespace detail {
 template <class F>
 inline double sum_over(const char* label, const Box& box, const F& f) {
   double r = 0.0;
-  Kokkos::parallel_reduce(label, box.policy(), f, Kokkos::Sum<double>(r));
+  reduce_cells(label, box, f, Kokkos::Sum<double>(r));
   return r;
 }
 

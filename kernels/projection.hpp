@@ -1,6 +1,7 @@
 #pragma once
 // Fractional-step projection on the MAC grid (Kim & Moin 1985):
 //   L_h phi = div_h u* / (alpha dt),   u = u* - alpha dt grad_h phi
+#include "core/launch.hpp"
 #include "core/types.hpp"
 
 namespace eulerfsi::kernels {
@@ -9,7 +10,7 @@ namespace eulerfsi::kernels {
 inline void divergence(const Field3& out, const Field3& u, const Field3& v, const Field3& w, const double h[3],
                        double scale, const Box& box) {
   const double ix = scale / h[0], iy = scale / h[1], iz = scale / h[2];
-  Kokkos::parallel_for("eulerfsi::projection::divergence", box.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+  for_each_cell("eulerfsi::projection::divergence", box, KOKKOS_LAMBDA(int i, int j, int k) {
     out(i, j, k) = (u(i, j, k) - u(i - 1, j, k)) * ix + (v(i, j, k) - v(i, j - 1, k)) * iy +
                    (w(i, j, k) - w(i, j, k - 1)) * iz;
   });
@@ -19,7 +20,7 @@ inline void divergence(const Field3& out, const Field3& u, const Field3& v, cons
 inline void subtract_gradient(const Field3& u, const Field3& v, const Field3& w, const Field3& phi, const double h[3],
                               double factor, const Box& box) {
   const double ix = factor / h[0], iy = factor / h[1], iz = factor / h[2];
-  Kokkos::parallel_for("eulerfsi::projection::correct", box.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+  for_each_cell("eulerfsi::projection::correct", box, KOKKOS_LAMBDA(int i, int j, int k) {
     const double p0 = phi(i, j, k);
     u(i, j, k) -= (phi(i + 1, j, k) - p0) * ix;
     v(i, j, k) -= (phi(i, j + 1, k) - p0) * iy;

@@ -7,6 +7,7 @@
 // through the boundary faces (conservative). Stretching with second-order central differences
 // at the cell centre.
 #include "core/compat.hpp"
+#include "core/launch.hpp"
 #include "core/types.hpp"
 #include "kernels/momentum.hpp"
 #include "kernels/offsets.hpp"
@@ -63,7 +64,7 @@ inline void scalar_advection_rhs(const Field3& rhs, const Field3& q, const Veloc
                                  const Box& box) {
   const double ih0 = 1.0 / h[0], ih1 = 1.0 / h[1], ih2 = 1.0 / h[2];
   const Field3 u = vel.c[0], v = vel.c[1], w = vel.c[2];
-  Kokkos::parallel_for("eulerfsi::solid::psi_rhs", box.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+  for_each_cell("eulerfsi::solid::psi_rhs", box, KOKKOS_LAMBDA(int i, int j, int k) {
     const double inv_h[3] = {ih0, ih1, ih2};
     // the fluid far from every body: nothing to transport
     rhs(i, j, k) = star_max(q, i, j, k) == 0.0 ? 0.0 : -weno_divergence(q, u, v, w, inv_h, i, j, k);
@@ -114,14 +115,14 @@ struct TensorTransportRhs {
 inline void tensor_transport_rhs(const Tensor6& rhs, const Tensor6& b, const Velocity& vel, const Field3& psi,
                                  double psi_min, const double h[3], const Box& box) {
   TensorTransportRhs f{rhs, b, vel.c[0], vel.c[1], vel.c[2], psi, psi_min, {1.0 / h[0], 1.0 / h[1], 1.0 / h[2]}};
-  Kokkos::parallel_for("eulerfsi::solid::b_rhs", box.policy(), f);
+  for_each_cell("eulerfsi::solid::b_rhs", box, f);
 }
 
 // Low-storage RK3 substep: q += dt (gamma rhs + zeta rhs_old). The caller swaps rhs and rhs_old.
 inline void rk3_scalar_update(const Field3& q, const Field3& rhs, const Field3& rhs_old, double dt, double gamma,
                               double zeta, const Box& box) {
   const double a = dt * gamma, c = dt * zeta;
-  Kokkos::parallel_for("eulerfsi::solid::psi_update", box.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+  for_each_cell("eulerfsi::solid::psi_update", box, KOKKOS_LAMBDA(int i, int j, int k) {
     q(i, j, k) += a * rhs(i, j, k) + c * rhs_old(i, j, k);
   });
 }
@@ -129,7 +130,7 @@ inline void rk3_scalar_update(const Field3& q, const Field3& rhs, const Field3& 
 inline void rk3_tensor_update(const Tensor6& b, const Tensor6& rhs, const Tensor6& rhs_old, double dt, double gamma,
                               double zeta, const Box& box) {
   const double a = dt * gamma, c = dt * zeta;
-  Kokkos::parallel_for("eulerfsi::solid::b_update", box.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+  for_each_cell("eulerfsi::solid::b_update", box, KOKKOS_LAMBDA(int i, int j, int k) {
     for (int s = 0; s < kTensorComponents; ++s) b.c[s](i, j, k) += a * rhs.c[s](i, j, k) + c * rhs_old.c[s](i, j, k);
   });
 }
@@ -139,7 +140,7 @@ inline void rk3_tensor_update(const Tensor6& b, const Tensor6& rhs, const Tensor
 // volume removed, sum (psi_before - psi_after), for the conservative correction below.
 inline double clip_volume_fraction(const Field3& psi, const Box& box) {
   double removed = 0.0;
-  Kokkos::parallel_reduce("eulerfsi::solid::psi_clip", box.policy(), KOKKOS_LAMBDA(int i, int j, int k, double& r) {
+  reduce_cells("eulerfsi::solid::psi_clip", box, KOKKOS_LAMBDA(int i, int j, int k, double& r) {
     const double before = psi(i, j, k);
     const double after = compat::fmin(compat::fmax(before, 0.0), 1.0);
     psi(i, j, k) = after;
@@ -151,7 +152,7 @@ inline double clip_volume_fraction(const Field3& psi, const Box& box) {
 // sum psi (1 - psi): the weight of the interface cells that take back the clipped volume.
 inline double interface_weight(const Field3& psi, const Box& box) {
   double w = 0.0;
-  Kokkos::parallel_reduce("eulerfsi::solid::psi_interface", box.policy(), KOKKOS_LAMBDA(int i, int j, int k, double& r) {
+  reduce_cells("eulerfsi::solid::psi_interface", box, KOKKOS_LAMBDA(int i, int j, int k, double& r) {
     const double p = psi(i, j, k);
     r += p * (1.0 - p);
   }, Kokkos::Sum<double>(w));
@@ -161,7 +162,7 @@ inline double interface_weight(const Field3& psi, const Box& box) {
 // psi += c psi (1 - psi): returns the clipped volume to the interface only, and keeps psi in
 // [0, 1] while |c| <= 1 (the clipped volume is a tiny fraction of the interface weight).
 inline void add_to_interface(const Field3& psi, double c, const Box& box) {
-  Kokkos::parallel_for("eulerfsi::solid::psi_restore", box.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+  for_each_cell("eulerfsi::solid::psi_restore", box, KOKKOS_LAMBDA(int i, int j, int k) {
     const double p = psi(i, j, k);
     psi(i, j, k) = p + c * p * (1.0 - p);
   });
@@ -170,7 +171,7 @@ inline void add_to_interface(const Field3& psi, double c, const Box& box) {
 // B = I where psi < psi_min: outside the solid B has no meaning and the stretching term would
 // let it grow without bound in shear; the stress there is psi G (B - I), so the reset is harmless.
 inline void reset_tensor_outside(const Tensor6& b, const Field3& psi, double psi_min, const Box& box) {
-  Kokkos::parallel_for("eulerfsi::solid::b_reset", box.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+  for_each_cell("eulerfsi::solid::b_reset", box, KOKKOS_LAMBDA(int i, int j, int k) {
     if (psi(i, j, k) < psi_min)
       for (int s = 0; s < kTensorComponents; ++s) b.c[s](i, j, k) = s < 3 ? 1.0 : 0.0;
   });

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "core/compat.hpp"
+#include "core/launch.hpp"
 #include "kernels/elastic_force.hpp"
 #include "kernels/solid_transport.hpp"
 
@@ -36,7 +37,7 @@ void fill_volume_fraction(const Field3& psi, const Grid& g, const SolidConfig& s
   const double cx = s.center[0], cy = s.center[1], cz = s.center[2], r = 0.5 * s.diameter;
   const double top = y0 + s.thickness;
   const int n = kSubsamples;
-  Kokkos::parallel_for("eulerfsi::solid::volume_fraction", g.all().policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+  for_each_cell("eulerfsi::solid::volume_fraction", g.all(), KOKKOS_LAMBDA(int i, int j, int k) {
     int inside = 0;
     for (int a = 0; a < n; ++a)
       for (int b = 0; b < n; ++b)
@@ -93,7 +94,7 @@ void SolidPhase::stop_bodies_at_rest(const kernels::Velocity& vel) const {
       const Field3 u = vel.c[c];
       const int di = c == 0, dj = c == 1, dk = c == 2;
       // the face lies between cell (i,j,k) and the next one along c
-      Kokkos::parallel_for("eulerfsi::solid::stop_at_rest", grid_.interior().policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+      for_each_cell("eulerfsi::solid::stop_at_rest", grid_.interior(), KOKKOS_LAMBDA(int i, int j, int k) {
         u(i, j, k) *= 1.0 - 0.5 * (psi(i, j, k) + psi(i + di, j + dj, k + dk));
       });
     }

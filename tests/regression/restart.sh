@@ -8,7 +8,9 @@
 set -euo pipefail
 bin=$1; case_file=$2; work=$3; np=${4:-1}
 here=$(cd "$(dirname "$0")" && pwd)
-run() { OMP_NUM_THREADS=$((np > 1 ? 1 : ${OMP_NUM_THREADS:-2})) mpiexec -n "$np" --oversubscribe "$bin" run "$case_file" --quiet "$@"; }
+# bit for bit needs the same ranks and threads: reductions sum in thread order
+export OMP_NUM_THREADS=$((np > 1 ? 1 : ${OMP_NUM_THREADS:-2}))
+run() { mpiexec -n "$np" --oversubscribe "$bin" run "$case_file" --quiet "$@"; }
 rm -rf "$work"; mkdir -p "$work"
 
 run --out "$work/full"
