@@ -44,6 +44,7 @@ const std::vector<std::string> kFlowColumns = {"step", "t", "dt", "cfl", "bulk_u
 // An adaptive step that can no longer keep the CFL number below this has blown up.
 constexpr double kBlowUpCfl = 1.0;
 constexpr int kExitBlowUp = 3;
+constexpr double kCollapse = 1e-6;
 
 class Simulation {
  public:
@@ -271,15 +272,23 @@ class Simulation {
     fields_.write(step_, t_, out, true);
   }
 
-  // Non-finite values or a CFL number the step cannot keep below 1: the run has blown up.
-  bool blown_up(double dt, double dt_stable) const {
+  // Non-finite values, a CFL number the step cannot keep below 1, or an adaptive step collapsing
+  // to a millionth of the run's first one (velocities growing without bound): the run has blown up.
+  bool blown_up(double dt, double dt_stable) {
+    if (dt_reference_ == 0.0) dt_reference_ = dt_stable;
     const double cfl = cfg_.time.cfl * dt / dt_stable;
-    return !(std::isfinite(dt_stable) && dt_stable > 1e-300 && cfl <= kBlowUpCfl);
+    return !(std::isfinite(dt_stable) && dt_stable > kCollapse * dt_reference_ && cfl <= kBlowUpCfl);
   }
 
   int report_blow_up(double dt, double dt_stable) {
     auto fields = state_fields();
     std::string where = locate_non_finite(fields, grid_, comm_.comm);
+    if (where.empty() && dt_stable <= kCollapse * dt_reference_) {
+      char buf[200];
+      std::snprintf(buf, sizeof(buf), "the stable time step collapsed to %.3g (%.1e of the first step %.3g): the velocity "
+                    "is growing without bound", dt_stable, dt_stable / dt_reference_, dt_reference_);
+      where = buf;
+    }
     if (where.empty()) {
       char buf[160];
       std::snprintf(buf, sizeof(buf), "the CFL number would be %.3g with dt = %.3g (limit %.3g)",
@@ -338,6 +347,7 @@ class Simulation {
   FlowDiagnostics last_;
   Field3 psi_total_, centred_[3];
   size_t next_shape_ = 0;
+  double dt_reference_ = 0.0;  // the first stable step of this session
   double t_ = 0.0;
   long step_ = 0;
 };

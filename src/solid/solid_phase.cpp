@@ -28,9 +28,12 @@ void set_identity(const kernels::Tensor6& b) {
   for (int c = 0; c < kernels::kTensorComponents; ++c) Kokkos::deep_copy(b.c[c], c < 3 ? 1.0 : 0.0);
 }
 
-// psi = fraction of kSubsamples^3 points of each cell inside the body (sphere: minimum image in x).
+// psi = fraction of kSubsamples^3 points of each cell inside the body (sphere: nearest periodic image).
 void fill_volume_fraction(const Field3& psi, const Grid& g, const SolidConfig& s) {
   const double hx = g.h[0], hy = g.h[1], hz = g.h[2], lx = g.length[0];
+  // periods for the nearest image (0: a wall direction, no images)
+  const double ly = g.bc[1] == Boundary::Periodic ? g.length[1] : 0.0;
+  const double lz = g.bc[2] == Boundary::Periodic ? g.length[2] : 0.0;
   const double y0 = g.domain_lo(1), z0 = g.domain_lo(2);
   const int x_off = g.x_offset;
   const bool sphere = s.shape == SolidShape::Sphere;
@@ -46,9 +49,11 @@ void fill_volume_fraction(const Field3& psi, const Grid& g, const SolidConfig& s
           const double y = y0 + (j - kGhost + (b + 0.5) / n) * hy;
           const double z = z0 + (k - kGhost + (c + 0.5) / n) * hz;
           if (sphere) {
-            double dx = x - cx;
+            double dx = x - cx, dy = y - cy, dz = z - cz;
             dx -= lx * compat::floor(dx / lx + 0.5);  // nearest periodic image
-            inside += (dx * dx + (y - cy) * (y - cy) + (z - cz) * (z - cz) < r * r) ? 1 : 0;
+            if (ly > 0.0) dy -= ly * compat::floor(dy / ly + 0.5);
+            if (lz > 0.0) dz -= lz * compat::floor(dz / lz + 0.5);
+            inside += (dx * dx + dy * dy + dz * dz < r * r) ? 1 : 0;
           } else {
             inside += (y < top) ? 1 : 0;
           }
