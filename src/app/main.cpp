@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 #include <Kokkos_Core.hpp>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -89,6 +90,9 @@ int run_cli(int argc, char** argv, const eulerfsi::Comm& comm) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Kokkos warns on stdout when OMP_PROC_BIND is unset; unset and "false" bind the same way, and
+  // `eulerfsi check` must print clean TOML
+  setenv("OMP_PROC_BIND", "false", 0);
   MPI_Init(&argc, &argv);
   int code = 0;
   {
