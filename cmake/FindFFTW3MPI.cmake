@@ -2,6 +2,8 @@
 find_path(FFTW3_INCLUDE_DIR fftw3-mpi.h HINTS $ENV{FFTW_ROOT}/include ${FFTW_ROOT}/include)
 find_library(FFTW3_LIBRARY fftw3 HINTS $ENV{FFTW_ROOT}/lib ${FFTW_ROOT}/lib)
 find_library(FFTW3_MPI_LIBRARY fftw3_mpi HINTS $ENV{FFTW_ROOT}/lib ${FFTW_ROOT}/lib)
+# optional: FFTW's OpenMP threads, so the Poisson solve uses the cores Kokkos uses
+find_library(FFTW3_OMP_LIBRARY fftw3_omp HINTS $ENV{FFTW_ROOT}/lib ${FFTW_ROOT}/lib)
 include(FindPackageHandleStandardArgs)
 find_package_handle_standard_args(FFTW3MPI
   REQUIRED_VARS FFTW3_MPI_LIBRARY FFTW3_LIBRARY FFTW3_INCLUDE_DIR

@@ -13,7 +13,14 @@ namespace {
 // FFTW-MPI must be initialised once per process, after MPI_Init; cleanup is left to exit.
 void ensure_fftw_mpi_init() {
   // a function-local static runs exactly once, even if two threads construct solvers
-  static const bool done = (fftw_mpi_init(), true);
+  static const bool done = [] {
+#ifdef EULERFSI_FFTW_THREADS
+    // the host threads Kokkos runs on also run the transforms (FFTW wants this before mpi_init)
+    fftw_init_threads();
+#endif
+    fftw_mpi_init();
+    return true;
+  }();
   (void)done;
 }
 
@@ -65,6 +72,9 @@ FftwMpiPoisson::FftwMpiPoisson(const Grid& grid, MPI_Comm comm, Planning plannin
     scale_ /= periodic ? double(n_[d]) : 2.0 * n_[d];
   }
   const unsigned effort = planning == Planning::Measure ? FFTW_MEASURE : FFTW_ESTIMATE;
+#ifdef EULERFSI_FFTW_THREADS
+  fftw_plan_with_nthreads(Kokkos::DefaultHostExecutionSpace().concurrency());
+#endif
   forward_ = fftw_mpi_plan_r2r_3d(n_[0], n_[1], n_[2], buf_, buf_, comm, fwd[0], fwd[1], fwd[2],
                                   effort | FFTW_MPI_TRANSPOSED_OUT);
   backward_ = fftw_mpi_plan_r2r_3d(n_[0], n_[1], n_[2], buf_, buf_, comm, bwd[0], bwd[1], bwd[2],
