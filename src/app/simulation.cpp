@@ -205,7 +205,7 @@ class Simulation {
   }
 
   void open_outputs(bool append) {
-    auto open = [&](const std::string& path, const std::vector<std::string>& cols) {
+    auto open = [this, append](const std::string& path, const std::vector<std::string>& cols) {
       return CsvWriter(path, cols, comm_.root(), append && fs::exists(path));
     };
     flow_csv_ = open(dir() + "/flow.csv", kFlowColumns);

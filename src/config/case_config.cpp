@@ -117,7 +117,7 @@ std::string show(const toml::node& n) {
   if (const auto* v = n.as_floating_point()) return fmt_double(v->get());
   if (const auto* v = n.as_integer()) return std::to_string(v->get());
   std::ostringstream os;
-  n.visit([&](auto&& v) { os << v; });
+  n.visit([&os](auto&& v) { os << v; });
   return os.str();
 }
 

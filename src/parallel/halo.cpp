@@ -55,7 +55,7 @@ void exchange_x(Field3 f, const Grid& g, MPI_Comm comm) {
   }
   // staging through host: contiguous slabs copy with one memcpy each way
   const int ny = int(f.extent(1)), nz = int(f.extent(2));
-  auto slab = [&](long off) { return Slab(p + off, kGhost, ny, nz); };
+  auto slab = [p, ny, nz](long off) { return Slab(p + off, kGhost, ny, nz); };
   HostSlab out_l(Kokkos::view_alloc(Kokkos::WithoutInitializing, "eulerfsi::halo::out_l"), kGhost, ny, nz);
   HostSlab out_r(Kokkos::view_alloc(Kokkos::WithoutInitializing, "eulerfsi::halo::out_r"), kGhost, ny, nz);
   HostSlab in_l(Kokkos::view_alloc(Kokkos::WithoutInitializing, "eulerfsi::halo::in_l"), kGhost, ny, nz);

@@ -11,9 +11,9 @@ namespace eulerfsi {
 std::vector<ContourSegment> contour_segments(const std::vector<double>& f, int nx, int ns, double x0, double s0,
                                              double dx, double ds, double level) {
   std::vector<ContourSegment> out;
-  auto at = [&](int a, int b) { return f[size_t(a) * ns + b]; };
+  auto at = [&f, ns](int a, int b) { return f[size_t(a) * ns + b]; };
   // the crossing point on the edge between two samples, by linear interpolation
-  auto cross = [&](double xa, double sa, double fa, double xb, double sb, double fb) {
+  auto cross = [level](double xa, double sa, double fa, double xb, double sb, double fb) {
     const double w = (level - fa) / (fb - fa);
     return std::pair<double, double>{xa + w * (xb - xa), sa + w * (sb - sa)};
   };
