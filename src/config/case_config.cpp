@@ -32,7 +32,7 @@ const std::vector<Section>& schema() {
       {"flow", {"Re", "bulk_velocity", "wall_velocity", "wall_frequency", "initial", "penalization_eta"}},
       {"time", {"cfl", "dt", "t_end", "max_steps"}},
       {"output", {"dir", "every", "fields_every", "profiles_every", "checkpoint_every", "shape_times"}},
-      {"solid", {"shape", "diameter", "center", "thickness", "We", "viscosity_ratio", "initial_velocity"}},
+      {"solid", {"shape", "diameter", "center", "thickness", "We", "viscosity_ratio", "initial_velocity", "sharpening"}},
   };
   return s;
 }
@@ -549,6 +549,9 @@ void read_solids(const Reader& r, const toml::table& root, const DomainConfig& d
     r.require(c.We > 0, t, s, "We", "must be > 0");
     r.get(t, s, "viscosity_ratio", c.viscosity_ratio);
     r.require(c.viscosity_ratio >= 0, t, s, "viscosity_ratio", "must be >= 0");
+    r.get(t, s, "sharpening", c.sharpening);
+    r.require(c.sharpening >= 0 && c.sharpening <= 0.3, t, s, "sharpening",
+              "must be in [0, 0.3] (pseudo-time step in units of h; 0 = off; above h/3 is unstable)");
     r.get(t, s, "initial_velocity", c.initial_velocity, kSolidVelocities);
 
     if (c.shape == SolidShape::Layer) {
@@ -710,7 +713,8 @@ std::string to_toml(const CaseConfig& c) {
       os << "thickness = " << fmt_double(s.thickness) << "\n";
     os << "We = " << fmt_double(s.We) << "\n"
        << "viscosity_ratio = " << fmt_double(s.viscosity_ratio) << "\n"
-       << "initial_velocity = " << toml_str(to_string(s.initial_velocity)) << "\n";
+       << "initial_velocity = " << toml_str(to_string(s.initial_velocity)) << "\n"
+       << "sharpening = " << fmt_double(s.sharpening) << "\n";
   }
   return os.str();
 }

@@ -58,6 +58,7 @@ struct SolidConfig {
   double thickness = 0.5;
   double We = 1.0;               // G = 1 / We
   double viscosity_ratio = 1.0;  // mu_s / mu_f
+  double sharpening = 0.0;       // interface sharpening pseudo-step per time step, in units of h (0: off)
   InitialSolidVelocity initial_velocity = InitialSolidVelocity::Fluid;
 };
 

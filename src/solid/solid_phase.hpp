@@ -48,6 +48,8 @@ class SolidPhase {
   double max_wave_speed() const;
 
  private:
+  void sharpen(SolidBody& body);
+
   CaseConfig cfg_;
   Grid grid_;
   const BoundaryConditions* bc_;

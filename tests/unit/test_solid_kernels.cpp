@@ -259,12 +259,14 @@ TEST(SolidTransport, SimpleShearMatchesExactDeformation) {
   EXPECT_LT(std::fabs(det - 1.0), 1e-12);
 }
 
-// Outside the solid B is reset to I, inside it is kept; psi is clipped into [0, 1].
+// Outside the solid B is reset to I, inside a positive definite B is kept and one that lost
+// positive definiteness is reset; psi is clipped into [0, 1].
 TEST(SolidTransport, ResetAndClip) {
   const Mesh m(4, 4, 4, 1.0, 1.0, 1.0);
   Field3 psi = m.field("psi");
   Tensor6 b = m.tensor("b");
-  for (int c = 0; c < 6; ++c) Kokkos::deep_copy(b.c[c], 5.0);
+  // [[5,2,2],[2,5,2],[2,2,5]]: eigenvalues 9, 3, 3
+  for (int c = 0; c < 6; ++c) Kokkos::deep_copy(b.c[c], c < 3 ? 5.0 : 2.0);
   Kokkos::deep_copy(psi, 1.2);
   Kokkos::parallel_for("test::psi2", m.all().policy(), KOKKOS_LAMBDA(int i, int j, int k) {
     if (i < 5) psi(i, j, k) = -0.01;  // "outside"
@@ -279,7 +281,14 @@ TEST(SolidTransport, ResetAndClip) {
   EXPECT_EQ(hxx(0, 1, 1), 1.0);
   EXPECT_EQ(hxy(0, 1, 1), 0.0);
   EXPECT_EQ(hxx(6, 1, 1), 5.0);
-  EXPECT_EQ(hxy(6, 1, 1), 5.0);
+  EXPECT_EQ(hxy(6, 1, 1), 2.0);
+  // inside, but [[5,5,5],[5,5,5],[5,5,5]] is singular: reset to I
+  for (int c = 3; c < 6; ++c) Kokkos::deep_copy(b.c[c], 5.0);
+  kernels::reset_tensor_outside(b, psi, 1e-3, m.all());
+  Kokkos::deep_copy(hxx, b.c[0]);
+  Kokkos::deep_copy(hxy, b.c[3]);
+  EXPECT_EQ(hxx(6, 1, 1), 1.0);
+  EXPECT_EQ(hxy(6, 1, 1), 0.0);
 }
 
 namespace {
