@@ -31,4 +31,32 @@ std::string locate_non_finite(const std::vector<std::pair<std::string, Field3>>&
   return msg;
 }
 
+std::string locate_fastest(const Field3 vel[3], const Grid& g, MPI_Comm comm) {
+  struct {
+    double rate;
+    int rank;
+  } mine{-1.0, 0}, best{0.0, 0};
+  MPI_Comm_rank(comm, &mine.rank);
+  char msg[256] = "";
+  const Box b = g.interior();
+  const char* names[3] = {"u", "v", "w"};
+  for (int c = 0; c < 3; ++c) {
+    auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), vel[c]);
+    for (int i = b.lo[0]; i < b.hi[0]; ++i)
+      for (int j = b.lo[1]; j < b.hi[1]; ++j)
+        for (int k = b.lo[2]; k < b.hi[2]; ++k) {
+          const double r = std::fabs(h(i, j, k)) / g.h[c];
+          if (r > mine.rate) {
+            mine.rate = r;
+            std::snprintf(msg, sizeof(msg), "the largest |%s| / h is %.3g, at cell (%d, %d, %d), x = %.4g, y = %.4g, z = %.4g",
+                          names[c], r, i - kGhost + g.x_offset, j - kGhost, k - kGhost, g.centre(0, i), g.centre(1, j),
+                          g.centre(2, k));
+          }
+        }
+  }
+  MPI_Allreduce(&mine, &best, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm);
+  MPI_Bcast(msg, sizeof(msg), MPI_CHAR, best.rank, comm);
+  return msg;
+}
+
 }  // namespace eulerfsi

@@ -15,4 +15,8 @@ namespace eulerfsi {
 std::string locate_non_finite(const std::vector<std::pair<std::string, Field3>>& fields, const Grid& grid,
                               MPI_Comm comm);
 
+// "largest |u_D| / h_D is X, in u at cell (i, j, k), x = .., y = .., z = .." over the velocity
+// components (u, v, w in that order). Collective.
+std::string locate_fastest(const Field3 vel[3], const Grid& grid, MPI_Comm comm);
+
 }  // namespace eulerfsi

@@ -283,6 +283,8 @@ class Simulation {
   int report_blow_up(double dt, double dt_stable) {
     auto fields = state_fields();
     std::string where = locate_non_finite(fields, grid_, comm_.comm);
+    // not a NaN yet: say where the velocity is largest
+    const std::string fastest = where.empty() ? locate_fastest(flow_.state().vel.c, grid_, comm_.comm) : "";
     if (where.empty() && dt_stable <= kCollapse * dt_reference_) {
       char buf[200];
       std::snprintf(buf, sizeof(buf), "the stable time step collapsed to %.3g (%.1e of the first step %.3g): the velocity "
@@ -295,6 +297,7 @@ class Simulation {
                     cfg_.time.cfl * dt / dt_stable, dt, kBlowUpCfl);
       where = buf;
     }
+    if (!fastest.empty()) where += "; " + fastest;
     if (comm_.root()) {
       std::fprintf(stderr, "error: the run blew up at step %ld, t = %.6g: %s\n", step_, t_, where.c_str());
       if (fs::exists(checkpoint_path()))

@@ -120,7 +120,8 @@ std::vector<ParticleState> ParticleTracker::measure(const SolidPhase& solids, co
     const double ax = evec[0][2], ar = evec[1][2] * s.radial_dir[1] + evec[2][2] * s.radial_dir[2];
     double angle = std::atan2(ar, ax);
     if (angle > M_PI / 2) angle -= M_PI;
-    if (angle <= -M_PI / 2) angle += M_PI;
+    // a major axis along the radial direction is +pi/2 however round-off tilts it
+    if (angle <= -M_PI / 2 + 1e-9) angle += M_PI;
     s.angle = angle;
     auto forces = kernels::body_forces(body.psi, flow.p, flow.vel, body.b, body.G, body.mu_s, grid_.h, box);
     double f[12];

@@ -9,6 +9,11 @@ foreach(c unsteady_pipe particle_pipe)
                    ${CMAKE_BINARY_DIR}/regression/rank_${c} --rtol 1e-10 --field-tol 1e-10)
   set_tests_properties(rank_independence_${c} PROPERTIES ENVIRONMENT "${EULERFSI_TEST_ENV}" PROCESSORS 2)
 endforeach()
+# and on 4 ranks (oversubscribed here: one x-slab of 6 planes per rank)
+add_test(NAME rank_independence_particle_pipe_np4
+         COMMAND bash ${REG}/rank_independence.sh $<TARGET_FILE:eulerfsi> ${REG}/cases/particle_pipe.toml
+                 ${CMAKE_BINARY_DIR}/regression/rank_particle_np4 --rtol 1e-10 --field-tol 1e-10)
+set_tests_properties(rank_independence_particle_pipe_np4 PROPERTIES ENVIRONMENT "${EULERFSI_TEST_ENV};NP=4" PROCESSORS 2)
 # a continued run matches the uninterrupted one bit for bit, on 1 and on 2 ranks
 foreach(np 1 2)
   add_test(NAME restart_bit_for_bit_np${np}
@@ -21,3 +26,8 @@ add_test(NAME bad_input_refused
          COMMAND bash ${REG}/bad_input.sh $<TARGET_FILE:eulerfsi> ${CMAKE_CURRENT_SOURCE_DIR}
                  ${CMAKE_BINARY_DIR}/regression/bad_input)
 set_tests_properties(bad_input_refused PROPERTIES ENVIRONMENT "${EULERFSI_TEST_ENV}" PROCESSORS 2)
+# the figure scripts on the output of a real run
+add_test(NAME plots_from_real_run
+         COMMAND bash ${REG}/plot_real_run.sh $<TARGET_FILE:eulerfsi> ${REG}/cases/particle_pipe.toml
+                 ${CMAKE_BINARY_DIR}/regression/plot_real_run)
+set_tests_properties(plots_from_real_run PROPERTIES ENVIRONMENT "${EULERFSI_TEST_ENV}")
