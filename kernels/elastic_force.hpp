@@ -4,6 +4,7 @@
 // on the MAC grid with the stencil of the viscous term in kernels/momentum.hpp: S_DD is
 // differenced between the two cells of the D-face, S_DE (E != D) is averaged from the four
 // cells around each edge and differenced across the face.
+#include "core/compat.hpp"
 #include "core/launch.hpp"
 #include "core/types.hpp"
 #include "kernels/momentum.hpp"
@@ -49,6 +50,22 @@ KOKKOS_FORCEINLINE_FUNCTION double elastic_force_at_face(const Field3& psi, cons
   return fn + f1 + f2;
 }
 
+// Largest psi over the ten cells the D-face stencil reads: the two cells of the face and their
+// neighbours across each edge. Zero means a zero force (most faces, far from the body).
+template <int D>
+KOKKOS_FORCEINLINE_FUNCTION double face_stencil_max(const Field3& psi, int i, int j, int k) {
+  constexpr int E1 = (D + 1) % 3, E2 = (D + 2) % 3;
+  double m = 0.0;
+  for (int a = 0; a <= 1; ++a) {
+    m = compat::fmax(m, shifted<D>(psi, i, j, k, a));
+    for (int s = -1; s <= 1; s += 2) {
+      m = compat::fmax(m, shifted<D, E1>(psi, i, j, k, a, s));
+      m = compat::fmax(m, shifted<D, E2>(psi, i, j, k, a, s));
+    }
+  }
+  return m;
+}
+
 template <int D>
 struct ElasticForce {
   Field3 rhs, psi;
@@ -56,6 +73,7 @@ struct ElasticForce {
   double G;
   double inv_h[3];
   KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k) const {
+    if (face_stencil_max<D>(psi, i, j, k) == 0.0) return;
     rhs(i, j, k) += elastic_force_at_face<D>(psi, b, bp, G, inv_h, i, j, k);
   }
 };
