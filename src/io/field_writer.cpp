@@ -57,9 +57,19 @@ void FieldWriter::write(long step, double t, const std::vector<NamedField>& fiel
   H5Pclose(fapl);
   if (file < 0) throw std::runtime_error("cannot create '" + tmp_path + "': is the output directory writable?");
   names_.clear();
-  for (const auto& f : fields) {
-    write_hdf5_field(file, grid_, f.name, f.data);
-    names_.push_back(f.name);
+  try {
+    for (const auto& f : fields) {
+      write_hdf5_field(file, grid_, f.name, f.data);
+      names_.push_back(f.name);
+    }
+  } catch (...) {
+    // a snapshot that could not be completed is removed, never left half-written
+    H5Fclose(file);
+    if (rank == 0) {
+      std::error_code ec;
+      fs::remove(tmp_path, ec);
+    }
+    throw;
   }
   hid_t aspace = H5Screate(H5S_SCALAR);
   hid_t attr = H5Acreate2(file, "time", H5T_NATIVE_DOUBLE, aspace, H5P_DEFAULT, H5P_DEFAULT);

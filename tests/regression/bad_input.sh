@@ -68,6 +68,15 @@ expect_error "corrupt checkpoint" "flipped.h5" mpi1 run "$good" --out "$run_dir"
 sum_after=$(md5sum "$run_dir/flow.csv" "$run_dir/checkpoint.h5" | md5sum)
 [ "$sum_before" = "$sum_after" ] || { echo "FAIL: refused runs changed the existing results"; fail=1; }
 
+# a full disk (a 300 kB tmpfs, where this machine lets us mount one): one message, no partial file
+if mkdir -p "$work/tiny" && mount -t tmpfs -o size=300k tmpfs "$work/tiny" 2> /dev/null; then
+  expect_error "disk full" "disk full" mpi1 run "$good" --out "$work/tiny/run" --set output.fields_every=2
+  if ls "$work"/tiny/run/fields/*.tmp > /dev/null 2>&1; then echo "FAIL: a partial snapshot was left behind"; fail=1; fi
+  umount "$work/tiny"
+else
+  echo "skip disk full: cannot mount a small tmpfs here"
+fi
+
 # a blow-up: a fixed time step far above the stability limit
 expect_error "blow-up (CFL)" "CFL number would be" mpi1 run "$good" --out "$work/blowup1" --set time.dt=5.0 --set time.t_end=100
 # a viscous instability: a fixed dt 3.7 times the explicit viscous limit, CFL still small
