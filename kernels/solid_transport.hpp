@@ -47,14 +47,15 @@ KOKKOS_FORCEINLINE_FUNCTION double velocity_gradient_at_centre(const Field3& uA,
   }
 }
 
-// Largest psi on the 19-point star of radius 3 that the WENO fluxes of cell (i,j,k) read: zero
-// means every flux through the cell's faces is exactly zero.
+// Largest |psi| on the 19-point star of radius 3 that the face fluxes of cell (i,j,k) read: zero
+// means every flux through the cell's faces is exactly zero (|psi|, so that an undershoot below
+// zero still counts: skipping it on one side of a face only would break conservation).
 KOKKOS_FORCEINLINE_FUNCTION double star_max(const Field3& psi, int i, int j, int k) {
-  double m = psi(i, j, k);
+  double m = compat::fabs(psi(i, j, k));
   for (int r = 1; r <= 3; ++r) {
-    m = compat::fmax(m, compat::fmax(psi(i - r, j, k), psi(i + r, j, k)));
-    m = compat::fmax(m, compat::fmax(psi(i, j - r, k), psi(i, j + r, k)));
-    m = compat::fmax(m, compat::fmax(psi(i, j, k - r), psi(i, j, k + r)));
+    m = compat::fmax(m, compat::fmax(compat::fabs(psi(i - r, j, k)), compat::fabs(psi(i + r, j, k))));
+    m = compat::fmax(m, compat::fmax(compat::fabs(psi(i, j - r, k)), compat::fabs(psi(i, j + r, k))));
+    m = compat::fmax(m, compat::fmax(compat::fabs(psi(i, j, k - r)), compat::fabs(psi(i, j, k + r))));
   }
   return m;
 }
