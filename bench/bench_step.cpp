@@ -10,6 +10,7 @@
 #include <string>
 
 #include "app/simulation.hpp"
+#include "support/pipe_case.hpp"
 #include "config/case_config.hpp"
 #include "core/compat.hpp"
 #include "parallel/comm.hpp"
@@ -19,24 +20,7 @@
 namespace {
 using namespace eulerfsi;
 
-CaseConfig pipe_case(int nx, int ny, int nz, bool particle) {
-  CaseConfig cfg;
-  cfg.source = "<bench>";
-  cfg.domain.geometry = Geometry::Pipe;
-  cfg.domain.cells = {nx, ny, nz};
-  cfg.domain.length = {double(nx) / ny, 1.0, 1.0};
-  cfg.flow.Re = 100.0;
-  cfg.flow.initial = InitialFlow::Laminar;
-  if (particle) {
-    SolidConfig s;
-    s.shape = SolidShape::Sphere;
-    s.diameter = 0.2;
-    s.center = {0.5 * cfg.domain.length[0], 0.2828 * 0.5, 0.0};  // r/R = 0.2828 with R = 1/2
-    s.We = 1.0;
-    cfg.solids.push_back(s);
-  }
-  return cfg;
-}
+using bench::pipe_case;
 
 void BM_Step(benchmark::State& state) {
   const Comm comm;
