@@ -58,7 +58,7 @@ class Simulation {
     if (opt_.restart) {
       restore();
     } else {
-      start_fresh();
+      set_initial_state(flow_, solids_);
     }
     open_outputs(opt_.restart);
     if (!opt_.restart) write_outputs(0.0, true);
@@ -94,15 +94,6 @@ class Simulation {
   bool finished() const {
     if (cfg_.time.max_steps > 0 && step_ >= cfg_.time.max_steps) return true;
     return t_ >= cfg_.time.t_end * (1.0 - 1e-14);
-  }
-
-  void start_fresh() {
-    flow_.set_initial_condition();
-    solids_.set_initial_condition();
-    if (!solids_.empty()) {
-      solids_.stop_bodies_at_rest(flow_.state().vel);
-      flow_.make_solenoidal();
-    }
   }
 
   void prepare_directory() {

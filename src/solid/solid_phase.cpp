@@ -9,6 +9,8 @@
 #include "kernels/elastic_force.hpp"
 #include "kernels/interface_sharpening.hpp"
 #include "kernels/solid_transport.hpp"
+#include "solver/flow_solver.hpp"
+#include "solver/rk3.hpp"
 
 namespace eulerfsi {
 
@@ -116,29 +118,33 @@ void SolidPhase::total_volume_fraction(const Field3& out) const {
 }
 
 void SolidPhase::advance_substep(const kernels::Velocity& vel, double dt, int substep) {
-  static constexpr double gamma[3] = {8.0 / 15.0, 5.0 / 12.0, 3.0 / 4.0};
-  static constexpr double zeta[3] = {0.0, -17.0 / 60.0, -5.0 / 12.0};
+  const double gamma = Rk3::gamma[substep], zeta = Rk3::zeta[substep];
   const Box box = grid_.interior();
   for (auto& body : bodies_) {
     // d psi/dt = -div(u psi);  dB/dt = -div(u B) + L B + B L^T   (WENO5 fluxes, RK3)
     kernels::scalar_advection_rhs(body.psi_rhs, body.psi, vel, grid_.h, box);
     kernels::tensor_transport_rhs(body.b_rhs, body.b, vel, body.psi, kPsiReset, grid_.h, box);
     for (int c = 0; c < kernels::kTensorComponents; ++c) Kokkos::deep_copy(body.b_prev.c[c], body.b.c[c]);
-    kernels::rk3_scalar_update(body.psi, body.psi_rhs, body.psi_rhs_old, dt, gamma[substep], zeta[substep], box);
-    kernels::rk3_tensor_update(body.b, body.b_rhs, body.b_rhs_old, dt, gamma[substep], zeta[substep], box);
+    kernels::rk3_scalar_update(body.psi, body.psi_rhs, body.psi_rhs_old, dt, gamma, zeta, box);
+    kernels::rk3_tensor_update(body.b, body.b_rhs, body.b_rhs_old, dt, gamma, zeta, box);
     std::swap(body.psi_rhs, body.psi_rhs_old);
     std::swap(body.b_rhs, body.b_rhs_old);
-    // bounded and conservative: clip to [0, 1], then give the clipped volume back to the interface
-    const double removed = comm_.sum(kernels::clip_volume_fraction(body.psi, box));
-    const double weight = comm_.sum(kernels::interface_weight(body.psi, box));
-    if (removed != 0.0 && weight > 0.0) {
-      kernels::add_to_interface(body.psi, compat::fmax(-1.0, compat::fmin(1.0, removed / weight)), box);
-    }
+    clip_conserving(body.psi);
     kernels::reset_tensor_outside(body.b, body.psi, kPsiReset, box);
     bc_->fill_scalar(body.psi);
     if (substep == 2 && body.cfg.sharpening > 0.0) sharpen(body);
     for (int c = 0; c < kernels::kTensorComponents; ++c) bc_->fill_scalar(body.b.c[c]);
   }
+}
+
+// Bounded and conservative: clip psi to [0, 1], then give the clipped volume back to the
+// interface cells in proportion to psi (1 - psi).
+void SolidPhase::clip_conserving(const Field3& psi) const {
+  const Box box = grid_.interior();
+  const double removed = comm_.sum(kernels::clip_volume_fraction(psi, box));
+  const double weight = comm_.sum(kernels::interface_weight(psi, box));
+  if (removed != 0.0 && weight > 0.0)
+    kernels::add_to_interface(psi, compat::fmax(-1.0, compat::fmin(1.0, removed / weight)), box);
 }
 
 // One conservative sharpening step of psi (Olsson & Kreiss 2005); scratch: the rhs buffers,
@@ -152,9 +158,7 @@ void SolidPhase::sharpen(SolidBody& body) {
   kernels::interface_normals(n.c[0], n.c[1], n.c[2], body.psi, grid_.h, grown);
   kernels::sharpening_rhs(body.psi_rhs, body.psi, n.c[0], n.c[1], n.c[2], kSharpenWidth * h, grid_.h, box);
   kernels::rk3_scalar_update(body.psi, body.psi_rhs, body.psi_rhs, body.cfg.sharpening * h, 1.0, 0.0, box);
-  const double removed = comm_.sum(kernels::clip_volume_fraction(body.psi, box));
-  const double weight = comm_.sum(kernels::interface_weight(body.psi, box));
-  if (removed != 0.0 && weight > 0.0) kernels::add_to_interface(body.psi, compat::fmax(-1.0, compat::fmin(1.0, removed / weight)), box);
+  clip_conserving(body.psi);
   bc_->fill_scalar(body.psi);
 }
 
@@ -166,6 +170,15 @@ void SolidPhase::mixture_viscosity(const Field3& mu, double mu_fluid) const {
 void SolidPhase::add_elastic_force(const kernels::Velocity& rhs) const {
   for (const auto& body : bodies_)
     kernels::add_elastic_force(rhs, body.psi, body.b, body.b_prev, body.G, grid_.h, grid_.interior());
+}
+
+void set_initial_state(FlowSolver& flow, SolidPhase& solids) {
+  flow.set_initial_condition();
+  solids.set_initial_condition();
+  if (!solids.empty()) {
+    solids.stop_bodies_at_rest(flow.state().vel);
+    flow.make_solenoidal();
+  }
 }
 
 double SolidPhase::max_wave_speed() const {

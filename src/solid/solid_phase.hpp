@@ -49,6 +49,7 @@ class SolidPhase {
 
  private:
   void sharpen(SolidBody& body);
+  void clip_conserving(const Field3& psi) const;
 
   CaseConfig cfg_;
   Grid grid_;

@@ -9,18 +9,9 @@
 #include "poisson/poisson_solver.hpp"
 #include "solver/boundary_conditions.hpp"
 #include "solver/flow_state.hpp"
+#include "solver/rk3.hpp"
 
 namespace eulerfsi {
-
-// Low-storage RK3 (Wray; Rai & Moin 1991): gamma, zeta, and alpha = gamma + zeta.
-struct Rk3 {
-  static constexpr int stages = 3;
-  static constexpr double gamma[3] = {8.0 / 15.0, 5.0 / 12.0, 3.0 / 4.0};
-  static constexpr double zeta[3] = {0.0, -17.0 / 60.0, -5.0 / 12.0};
-  static constexpr double alpha(int s) { return gamma[s] + zeta[s]; }
-  // time at the start of substep s, as a fraction of dt
-  static constexpr double start(int s) { return s == 0 ? 0.0 : (s == 1 ? 8.0 / 15.0 : 2.0 / 3.0); }
-};
 
 struct FlowDiagnostics {
   double cfl = 0.0;
@@ -32,6 +23,11 @@ struct FlowDiagnostics {
 };
 
 class SolidPhase;  // the soft particles (solid/solid_phase.hpp); may be absent
+
+class FlowSolver;
+// The state a run starts from: the flow's initial condition, the bodies' shapes with B = I, zero
+// velocity inside bodies that start at rest, then one projection (defined in solid_phase.cpp).
+void set_initial_state(FlowSolver& flow, SolidPhase& solids);
 
 class FlowSolver {
  public:

@@ -6,6 +6,7 @@
 #include "app/simulation.hpp"
 #include "config/case_config.hpp"
 #include "parallel/comm.hpp"
+#include "solid/solid_phase.hpp"
 #include "solver/flow_solver.hpp"
 
 namespace eulerfsi::test {
@@ -22,13 +23,15 @@ inline CaseConfig small_case(Geometry geo, int nx, int ny, int nz, double lx, do
   return cfg;
 }
 
-// Advances the flow to t_end with the solver's stable step; calls `each` after every step.
-inline void run_flow(FlowSolver& flow, double t_end, const std::function<void(double t)>& each = {}) {
+// Advances the flow (and the bodies, if given) to t_end with the stable step; calls `each` after
+// every step.
+inline void run_flow(FlowSolver& flow, double t_end, const std::function<void(double t)>& each = {},
+                     SolidPhase* solids = nullptr) {
   double t = 0.0;
   while (t < t_end * (1.0 - 1e-14)) {
-    double dt = flow.stable_dt();
+    double dt = flow.stable_dt(solids ? solids->max_wave_speed() : 0.0);
     if (t + dt > t_end) dt = t_end - t;
-    flow.advance(t, dt);
+    flow.advance(t, dt, solids);
     t += dt;
     if (each) each(t);
   }

@@ -35,15 +35,9 @@ LayerError layer_error(int ny) {
   const Grid grid = make_grid(cfg, comm);
   FlowSolver flow(cfg, grid, comm);
   SolidPhase solids(cfg, grid, flow.boundaries(), comm);
-  flow.set_initial_condition();
-  solids.set_initial_condition();
-  double t = 0.0;
-  while (t < kTEnd * (1.0 - 1e-14)) {
-    double dt = flow.stable_dt(solids.max_wave_speed());
-    if (t + dt > kTEnd) dt = kTEnd - t;
-    flow.advance(t, dt, &solids);
-    t += dt;
-  }
+  set_initial_state(flow, solids);
+  test::run_flow(flow, kTEnd, {}, &solids);
+  const double t = kTEnd;
   const exact::OscillatingLayer sol(kThickness, 1.0, kV, kOmega, 1.0, 1.0 / kRe, 1.0 / kRe, 1.0 / kWe);
   auto u = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), flow.state().u());
   const Box b = grid.interior();

@@ -38,10 +38,7 @@ ShearResult run_shear(const std::vector<std::string>& overrides, double t_lo) {
   FlowSolver flow(cfg, grid, comm);
   SolidPhase solids(cfg, grid, flow.boundaries(), comm);
   ParticleTracker tracker(cfg, grid, comm);
-  flow.set_initial_condition();
-  solids.set_initial_condition();
-  solids.stop_bodies_at_rest(flow.state().vel);  // as the run does (no-op for initial_velocity = "fluid")
-  flow.make_solenoidal();
+  set_initial_state(flow, solids);  // as a run starts
 
   const double ly = cfg.domain.length[1];
   const double shear_rate = (cfg.flow.wall_velocity[1] - cfg.flow.wall_velocity[0]) / ly;
@@ -52,24 +49,18 @@ ShearResult run_shear(const std::vector<std::string>& overrides, double t_lo) {
   r.volume0 = tracker.measure(solids, flow.state())[0].volume;
 
   const double t_end = cfg.time.t_end / shear_rate, t_from = t_lo / shear_rate;
-  double t = 0.0, sum_d = 0.0, sum_a = 0.0;
+  double sum_d = 0.0, sum_a = 0.0;
   long samples = 0;
-  bool started = false;
-  while (t < t_end * (1.0 - 1e-14)) {
-    double dt = flow.stable_dt(solids.max_wave_speed());
-    if (t + dt > t_end) dt = t_end - t;
-    flow.advance(t, dt, &solids);
-    t += dt;
-    if (t < t_from) continue;
+  test::run_flow(flow, t_end, [&](double t) {
+    if (t < t_from) return;
     const ParticleState p = tracker.measure(solids, flow.state())[0];
-    if (!started) r.D_start = p.taylor_D;
-    started = true;
+    if (samples == 0) r.D_start = p.taylor_D;
     sum_d += p.taylor_D;
     sum_a += p.angle;
     ++samples;
     r.D_end = p.taylor_D;
     r.volume = p.volume;
-  }
+  }, &solids);
   r.D = sum_d / double(samples);
   r.angle = sum_a / double(samples);
   return r;
@@ -154,10 +145,7 @@ TEST(ShearParticle, UnstrainedParticleInFluidAtRestStaysAtRest) {
   FlowSolver flow(cfg, grid, comm);
   SolidPhase solids(cfg, grid, flow.boundaries(), comm);
   ParticleTracker tracker(cfg, grid, comm);
-  flow.set_initial_condition();
-  solids.set_initial_condition();
-  solids.stop_bodies_at_rest(flow.state().vel);
-  flow.make_solenoidal();
+  set_initial_state(flow, solids);  // as a run starts
   const ParticleState p0 = tracker.measure(solids, flow.state())[0];
   double t = 0.0, max_u = 0.0;
   const Box box = grid.interior();
