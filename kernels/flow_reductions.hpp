@@ -53,12 +53,14 @@ inline void add_open_x_velocity(const Field3& u, const Mask2& chi_u, double du, 
   });
 }
 
-// sum over faces of (u^2 + v^2 + w^2) / 2
-inline double kinetic_energy_sum(const Field3& u, const Field3& v, const Field3& w, const Box& box) {
+// sum over faces of ((u + u_frame)^2 + v^2 + w^2) / 2: the laboratory's kinetic energy
+inline double kinetic_energy_sum(const Field3& u, const Field3& v, const Field3& w, const Box& box,
+                                 double u_frame = 0.0) {
   double result = 0.0;
   reduce_cells("eulerfsi::diag::kinetic_energy", box,
                           KOKKOS_LAMBDA(int i, int j, int k, double& s) {
-    s += 0.5 * (u(i, j, k) * u(i, j, k) + v(i, j, k) * v(i, j, k) + w(i, j, k) * w(i, j, k));
+    const double ul = u(i, j, k) + u_frame;
+    s += 0.5 * (ul * ul + v(i, j, k) * v(i, j, k) + w(i, j, k) * w(i, j, k));
   }, Kokkos::Sum<double>(result));
   return result;
 }

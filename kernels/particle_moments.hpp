@@ -143,15 +143,23 @@ KOKKOS_FORCEINLINE_FUNCTION double viscous_at_face(const Velocity& vel, const do
 }
 
 // One force term in direction D at the centre of cell (i,j,k), not yet weighted by psi.
+// du_D/dx at the D-face (i,j,k), central: the extra advection U du_D/dx of a grid moving with U.
+template <int D>
+KOKKOS_FORCEINLINE_FUNCTION double ddx_at_face(const Velocity& vel, const double inv_h[3], int i, int j, int k) {
+  return 0.5 * inv_h[0] * (vel.c[D](i + 1, j, k) - vel.c[D](i - 1, j, k));
+}
+
+// u_frame: the grid's x-velocity; the inertia term is the laboratory's, -div((u + u_frame e_x) u_D).
 template <int D>
 KOKKOS_INLINE_FUNCTION double force_term(int term, const Field3& p, const Velocity& vel, const Tensor6& b, double G,
-                                         double mu_s, const double inv_h[3], int i, int j, int k) {
+                                         double mu_s, double u_frame, const double inv_h[3], int i, int j, int k) {
   constexpr int di = Unit<D>::i, dj = Unit<D>::j, dk = Unit<D>::k;
   switch (term) {
     case 0:  // -dp/dx_D, central difference of cell-centre pressure
       return -0.5 * inv_h[D] * (p(i + di, j + dj, k + dk) - p(i - di, j - dj, k - dk));
     case 1:  // face terms averaged over the two D-faces of the cell
-      return -0.5 * (advection_at_face<D>(vel, inv_h, i, j, k) + advection_at_face<D>(vel, inv_h, i - di, j - dj, k - dk));
+      return -0.5 * (advection_at_face<D>(vel, inv_h, i, j, k) + advection_at_face<D>(vel, inv_h, i - di, j - dj, k - dk) +
+                     u_frame * (ddx_at_face<D>(vel, inv_h, i, j, k) + ddx_at_face<D>(vel, inv_h, i - di, j - dj, k - dk)));
     case 2:
       return 0.5 * mu_s *
              (viscous_at_face<D>(vel, inv_h, i, j, k) + viscous_at_face<D>(vel, inv_h, i - di, j - dj, k - dk));
@@ -171,15 +179,15 @@ struct ForceTerm {
   Field3 psi, p;
   Velocity vel;
   Tensor6 b;
-  double G, mu_s;
+  double G, mu_s, u_frame;
   double inv_h[3];
   int term, dir;
   KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k, double& acc) const {
     const double w = psi(i, j, k);
     if (w == 0.0) return;  // most of the domain: skip the stencils
-    const double f = dir == 0   ? force_term<0>(term, p, vel, b, G, mu_s, inv_h, i, j, k)
-                     : dir == 1 ? force_term<1>(term, p, vel, b, G, mu_s, inv_h, i, j, k)
-                                : force_term<2>(term, p, vel, b, G, mu_s, inv_h, i, j, k);
+    const double f = dir == 0   ? force_term<0>(term, p, vel, b, G, mu_s, u_frame, inv_h, i, j, k)
+                     : dir == 1 ? force_term<1>(term, p, vel, b, G, mu_s, u_frame, inv_h, i, j, k)
+                                : force_term<2>(term, p, vel, b, G, mu_s, u_frame, inv_h, i, j, k);
     acc += w * f;
   }
 };
@@ -198,6 +206,15 @@ inline BodyFirstMoments body_first_moments(const Field3& psi, const Velocity& ve
   return r;
 }
 
+// The body's mean x-velocity sum psi u_c / sum psi as {sum psi, sum psi u_c} (times dV omitted).
+inline void body_x_momentum(const Field3& psi, const Velocity& vel, const Box& box, double out[2]) {
+  const CellCentres none{{0, 0, 0}, {1, 1, 1}};
+  detail::FirstMomentTerm volume{psi, vel.c[0], vel.c[1], vel.c[2], none, 0.0, BodyFirstMoments::Volume};
+  detail::FirstMomentTerm momentum{psi, vel.c[0], vel.c[1], vel.c[2], none, 0.0, BodyFirstMoments::U};
+  out[0] = detail::sum_over("eulerfsi::diag::body_volume", box, volume);
+  out[1] = detail::sum_over("eulerfsi::diag::body_x_momentum", box, momentum);
+}
+
 // Moments about the point c; period[d] = domain length in a periodic direction, 0 otherwise.
 inline BodySecondMoments body_second_moments(const Field3& psi, const CellCentres& xc, const double c[3],
                                              const double period[3], const Box& box) {
@@ -211,15 +228,16 @@ inline BodySecondMoments body_second_moments(const Field3& psi, const CellCentre
   return r;
 }
 
-// Force terms of the paper's eq. (force) for one body; needs one ghost layer of p, u, B.
+// Force terms of the paper's eq. (force) for one body, in the laboratory frame (u_frame: the grid's
+// x-velocity; vel is relative to the grid); needs one ghost layer of p, u, B.
 inline BodyForces body_forces(const Field3& psi, const Field3& p, const Velocity& vel, const Tensor6& b, double G,
-                              double mu_s, const double h[3], const Box& box) {
+                              double mu_s, double u_frame, const double h[3], const Box& box) {
   const double dv = h[0] * h[1] * h[2];
   BodyForces r{};
   double* out[4] = {r.pressure, r.inertia, r.viscous, r.elastic};
   for (int term = 0; term < 4; ++term)
     for (int d = 0; d < 3; ++d) {
-      detail::ForceTerm f{psi, p, vel, b, G, mu_s, {1.0 / h[0], 1.0 / h[1], 1.0 / h[2]}, term, d};
+      detail::ForceTerm f{psi, p, vel, b, G, mu_s, u_frame, {1.0 / h[0], 1.0 / h[1], 1.0 / h[2]}, term, d};
       out[term][d] = dv * detail::sum_over("eulerfsi::diag::body_forces", box, f);
     }
   return r;

@@ -1,6 +1,6 @@
 #pragma once
 // Low-storage RK3 substep with implicit volume penalization (Kadoch et al. 2012):
-//   u* = [u^k + dt (gamma rhs^k + zeta rhs^(k-1))] / (1 + alpha dt chi / eta)
+//   u* = [u^k + dt (gamma rhs^k + zeta rhs^(k-1)) + (alpha dt chi / eta) u_wall] / (1 + alpha dt chi / eta)
 // chi(j,k) is the x-independent solid-wall mask at the component's staggered location.
 #include "core/launch.hpp"
 #include "core/types.hpp"
@@ -10,8 +10,9 @@ namespace eulerfsi::kernels {
 using Mask2 = Kokkos::View<double**, Kokkos::LayoutRight, MemSpace>;
 
 inline void rk3_update(const Field3& u, const Field3& rhs_new, const Field3& rhs_old, const Mask2& chi, double dt,
-                       double gamma, double zeta, double penal_factor, const Box& box, const char* label) {
-  // penal_factor = alpha dt / eta; chi empty means no penalization
+                       double gamma, double zeta, double penal_factor, const Box& box, const char* label,
+                       double u_wall = 0.0) {
+  // penal_factor = alpha dt / eta; chi empty means no penalization; u_wall: the wall's velocity
   const bool has_mask = chi.extent(0) > 0;
   const double a = dt * gamma, b = dt * zeta;
   for_each_cell(label, box, KOKKOS_LAMBDA(int i, int j, int k) {
@@ -20,8 +21,8 @@ inline void rk3_update(const Field3& u, const Field3& rhs_new, const Field3& rhs
     double* KOKKOS_RESTRICT pu = u.data();
     const double* KOKKOS_RESTRICT pn = rhs_new.data();
     const double* KOKKOS_RESTRICT po = rhs_old.data();
-    const double damp = has_mask ? 1.0 / (1.0 + penal_factor * chi(j, k)) : 1.0;
-    pu[c] = (pu[c] + a * pn[c] + b * po[c]) * damp;
+    const double pen = has_mask ? penal_factor * chi(j, k) : 0.0;
+    pu[c] = (pu[c] + a * pn[c] + b * po[c] + pen * u_wall) / (1.0 + pen);
   });
 }
 

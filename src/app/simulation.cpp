@@ -15,6 +15,7 @@
 #include "io/csv_writer.hpp"
 #include "io/field_writer.hpp"
 #include "io/profiles.hpp"
+#include "kernels/flow_reductions.hpp"
 #include "kernels/interpolation.hpp"
 #include "solid/migration_summary.hpp"
 #include "solid/particle_diagnostics.hpp"
@@ -40,7 +41,9 @@ Grid make_grid(const CaseConfig& cfg, const Comm& comm) {
 
 namespace {
 
-const std::vector<std::string> kFlowColumns = {"step", "t", "dt", "cfl", "bulk_u", "dpdx", "max_div", "kinetic_energy"};
+// frame_u, frame_x: the grid's x-velocity and displacement (flow.frame_velocity); fields are on the grid
+const std::vector<std::string> kFlowColumns = {"step", "t",       "dt",           "cfl",     "bulk_u",
+                                               "dpdx", "max_div", "kinetic_energy", "frame_u", "frame_x"};
 // An adaptive step that can no longer keep the CFL number below this has blown up.
 constexpr double kBlowUpCfl = 1.0;
 constexpr int kExitBlowUp = 3;
@@ -59,6 +62,7 @@ class Simulation {
       restore();
     } else {
       set_initial_state(flow_, solids_);
+      update_frame();
     }
     open_outputs(opt_.restart);
     if (!opt_.restart) write_outputs(0.0, true);
@@ -73,6 +77,7 @@ class Simulation {
       flow_.advance(t_, dt, solids_.empty() ? nullptr : &solids_);
       t_ += dt;
       ++step_;
+      update_frame();
       write_outputs(dt, false);
       if (cfg_.output.checkpoint_every > 0 && step_ % cfg_.output.checkpoint_every == 0) write_restart_file();
       if (step_ % cfg_.output.every == 0 && !opt_.quiet) print_progress(dt, wall_start, done_at_start);
@@ -89,6 +94,16 @@ class Simulation {
 
  private:
   const std::string& dir() const { return cfg_.output.dir; }
+  GridFrame frame() const { return {flow_.frame_velocity(), flow_.frame_offset()}; }
+
+  // A frame that follows the particle takes solid 0's mean x-velocity after every step.
+  void update_frame() {
+    const auto& f = cfg_.flow;
+    const double u = f.frame_follows_particle
+                         ? tracker_.mean_x_velocity(solids_, flow_.state(), 0, flow_.frame_velocity())
+                         : f.frame_velocity;
+    flow_.set_frame_velocity(u, t_);
+  }
   std::string checkpoint_path() const { return dir() + "/checkpoint.h5"; }
 
   bool finished() const {
@@ -156,6 +171,8 @@ class Simulation {
     meta.dpdx = flow_.dpdx();
     meta.config_toml = to_toml(cfg_);
     meta.scalars["next_shape"] = double(next_shape_);
+    meta.scalars["frame.velocity"] = flow_.frame_velocity();
+    meta.scalars["frame.offset"] = flow_.frame_offset();
     const auto xs = tracker_.unwrapped_x();
     for (size_t n = 0; n < xs.size(); ++n) meta.scalars["solid" + std::to_string(n) + ".x_unwrapped"] = xs[n];
     write_checkpoint(checkpoint_path(), grid_, comm_.comm, meta, state_fields());
@@ -180,6 +197,10 @@ class Simulation {
     for (size_t n = 0; n < solids_.bodies().size(); ++n)
       xs.push_back(meta.scalars.at("solid" + std::to_string(n) + ".x_unwrapped"));
     tracker_.set_unwrapped_x(xs);
+    // the stored velocity is relative to the stored frame; a new fixed frame_velocity shifts it
+    auto scalar = [&meta](const char* key) { return meta.scalars.count(key) ? meta.scalars.at(key) : 0.0; };
+    flow_.restore_frame(scalar("frame.velocity"), scalar("frame.offset"));
+    if (!cfg_.flow.frame_follows_particle) flow_.set_frame_velocity(cfg_.flow.frame_velocity, t_);
     // ghosts are not stored: refill them exactly as a step leaves them
     flow_.boundaries().fill_velocity(flow_.state().vel, t_);
     flow_.boundaries().fill_scalar(flow_.state().p);
@@ -214,13 +235,14 @@ class Simulation {
     const bool row = initial || step_ % o.every == 0;
     if (row) {
       last_ = flow_.diagnostics(dt, solids_.max_wave_speed());
-      flow_csv_.row({double(step_), t_, dt, last_.cfl, last_.bulk_u, last_.dpdx, last_.max_div, last_.kinetic_energy});
+      flow_csv_.row({double(step_), t_, dt, last_.cfl, last_.bulk_u, last_.dpdx, last_.max_div, last_.kinetic_energy,
+                     flow_.frame_velocity(), flow_.frame_offset()});
     }
     if (!solids_.empty()) write_particles(row);
     if (o.profiles_every > 0 && step_ % o.profiles_every == 0) {
       char name[64];
       std::snprintf(name, sizeof(name), "/profiles/%08ld.csv", step_);
-      write_profile(dir() + name, cfg_, grid_, comm_.comm, flow_.state().vel, total_psi());
+      write_profile(dir() + name, cfg_, grid_, comm_.comm, flow_.state().vel, total_psi(), flow_.frame_velocity());
     }
     if (o.fields_every > 0 && step_ % o.fields_every == 0) write_fields();
   }
@@ -230,13 +252,13 @@ class Simulation {
     const auto& times = cfg_.output.shape_times;
     const bool shape_due = next_shape_ < times.size() && t_ >= times[next_shape_] - 1e-12;
     if (!row && !shape_due) return;
-    const auto states = tracker_.measure(solids_, flow_.state());
+    const auto states = tracker_.measure(solids_, flow_.state(), frame());
     if (row)
       for (size_t n = 0; n < states.size(); ++n) particle_csv_.row(particle_row(step_, t_, int(n), states[n]));
     if (shape_due) {
       char name[64];
       std::snprintf(name, sizeof(name), "/shapes/%08ld.csv", step_);
-      write_shape_sections(dir() + name, grid_, comm_.comm, solids_, states);
+      write_shape_sections(dir() + name, grid_, comm_.comm, solids_, states, flow_.frame_offset());
       shape_index_.row({double(step_), t_});
       while (next_shape_ < times.size() && t_ >= times[next_shape_] - 1e-12) ++next_shape_;
     }
@@ -256,6 +278,9 @@ class Simulation {
     for (int c = 0; c < 3; ++c) {
       if (centred_[c].extent(0) == 0) centred_[c] = grid_.make_field(names[c]);
       kernels::face_to_centre(centred_[c], flow_.state().vel.c[c], c, box);
+      // the laboratory's velocity on the grid's points (a uniform add, as the flow-rate correction)
+      if (c == 0 && flow_.frame_velocity() != 0.0)
+        kernels::add_open_x_velocity(centred_[c], kernels::Mask2(), flow_.frame_velocity(), box);
       out.push_back({names[c], centred_[c]});
     }
     out.push_back({"p", flow_.state().p});

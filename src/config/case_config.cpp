@@ -29,7 +29,7 @@ struct Section {
 const std::vector<Section>& schema() {
   static const std::vector<Section> s{
       {"domain", {"length", "cells", "geometry"}},
-      {"flow", {"Re", "bulk_velocity", "wall_velocity", "wall_frequency", "initial", "penalization_eta"}},
+      {"flow", {"Re", "bulk_velocity", "wall_velocity", "wall_frequency", "initial", "penalization_eta", "frame_velocity"}},
       {"time", {"cfl", "dt", "t_end", "max_steps"}},
       {"output", {"dir", "every", "fields_every", "profiles_every", "checkpoint_every", "shape_times"}},
       {"solid", {"shape", "diameter", "center", "thickness", "We", "viscosity_ratio", "initial_velocity", "sharpening"}},
@@ -481,6 +481,15 @@ void read_flow(const Reader& r, const toml::table& root, const DomainConfig& d, 
     r.fail("flow.initial", init_key + ": \"taylor-green\" needs domain.geometry = \"periodic\", not " + geo);
   r.get(t, "flow", "penalization_eta", f.penalization_eta);
   r.require(f.penalization_eta > 0, t, "flow", "penalization_eta", "must be > 0");
+  if (const toml::node* n = t ? t->get("frame_velocity") : nullptr) {
+    if (const auto* s = n->as_string()) {
+      if (s->get() != "particle")
+        r.fail_value("flow.frame_velocity", *n, "must be a number (the frame's x-velocity) or \"particle\"");
+      f.frame_follows_particle = true;
+    } else {
+      f.frame_velocity = r.number(*n, "flow.frame_velocity");
+    }
+  }
 }
 
 void read_time(const Reader& r, const toml::table& root, TimeConfig& c) {
@@ -631,6 +640,9 @@ CaseConfig validate(const toml::table& root, const Reader& r) {
   read_time(r, root, cfg.time);
   read_output(r, root, cfg.output);
   read_solids(r, root, cfg.domain, cfg.solids);
+  if (cfg.flow.frame_follows_particle && cfg.solids.empty())
+    r.fail("flow.frame_velocity", "flow.frame_velocity = \"particle\": the case has no [[solid]] to follow; give a "
+                                  "number or add a solid");
   return cfg;
 }
 
@@ -689,7 +701,9 @@ std::string to_toml(const CaseConfig& c) {
   os << "wall_velocity = " << arr(c.flow.wall_velocity) << "\n"
      << "wall_frequency = " << fmt_double(c.flow.wall_frequency) << "\n"
      << "initial = " << toml_str(to_string(c.flow.initial)) << "\n"
-     << "penalization_eta = " << fmt_double(c.flow.penalization_eta) << "\n";
+     << "penalization_eta = " << fmt_double(c.flow.penalization_eta) << "\n"
+     << "frame_velocity = " << (c.flow.frame_follows_particle ? std::string("\"particle\"") : fmt_double(c.flow.frame_velocity))
+     << "\n";
   os << "\n[time]\n"
      << "cfl = " << fmt_double(c.time.cfl) << "\n"
      << "dt = " << fmt_double(c.time.dt) << "\n"

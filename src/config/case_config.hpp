@@ -30,6 +30,11 @@ struct FlowConfig {
   double wall_frequency = 0.0;               // > 0: wall velocity times sin(wall_frequency t)
   InitialFlow initial = InitialFlow::Laminar;
   double penalization_eta = 1e-8;            // volume penalization permeability (pipe)
+  // The grid moves along x with this velocity (a Galilean frame; walls are x-uniform, x periodic):
+  // a particle that travels with the frame crosses no cells, so WENO does not smear its edge.
+  // Numerics only: every output is in the laboratory frame.
+  double frame_velocity = 0.0;
+  bool frame_follows_particle = false;       // frame_velocity = "particle": solid 0's mean u, each step
 };
 
 struct TimeConfig {

@@ -10,7 +10,8 @@
 namespace eulerfsi {
 
 void write_profile(const std::string& path, const CaseConfig& cfg, const Grid& g, MPI_Comm comm,
-                   const kernels::Velocity& vel, const Field3& psi_total) {
+                   const kernels::Velocity& vel, const Field3& psi_total,
+                   double frame_velocity) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   auto u = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), vel.c[0]);
@@ -56,7 +57,7 @@ void write_profile(const std::string& path, const CaseConfig& cfg, const Grid& g
     const double* q = &global[size_t(bin) * nq];
     if (q[4] == 0.0) continue;
     const double coord = pipe ? (bin + 0.5) * dy : g.centre(1, bin + kGhost);
-    out << format_number(coord) << "," << format_number(q[0] / q[4]);
+    out << format_number(coord) << "," << format_number(q[0] / q[4] + frame_velocity);
     if (!pipe) out << "," << format_number(q[1] / q[4]) << "," << format_number(q[2] / q[4]);
     if (with_psi) out << "," << format_number(q[3] / q[4]);
     out << "\n";

@@ -11,7 +11,9 @@
 
 namespace eulerfsi {
 
+// vel is relative to the grid, which moves with frame_velocity along x: u is written in the laboratory.
 void write_profile(const std::string& path, const CaseConfig& cfg, const Grid& grid, MPI_Comm comm,
-                   const kernels::Velocity& vel, const Field3& psi_total);
+                   const kernels::Velocity& vel, const Field3& psi_total,
+                   double frame_velocity = 0.0);
 
 }  // namespace eulerfsi

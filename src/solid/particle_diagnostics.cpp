@@ -60,7 +60,16 @@ void sum_all(const Comm& comm, double (&a)[N]) {
 
 }  // namespace
 
-std::vector<ParticleState> ParticleTracker::measure(const SolidPhase& solids, const FlowState& flow) {
+double ParticleTracker::mean_x_velocity(const SolidPhase& solids, const FlowState& flow, size_t body,
+                                        double frame_velocity) const {
+  double m[2];
+  kernels::body_x_momentum(solids.bodies().at(body).psi, flow.vel, grid_.interior(), m);
+  sum_all(comm_, m);
+  return (m[0] > 0.0 ? m[1] / m[0] : 0.0) + frame_velocity;
+}
+
+std::vector<ParticleState> ParticleTracker::measure(const SolidPhase& solids, const FlowState& flow,
+                                                    const GridFrame& frame) {
   const Box box = grid_.interior();
   const kernels::CellCentres xc{{grid_.centre(0, 0), grid_.centre(1, 0), grid_.centre(2, 0)},
                                 {grid_.h[0], grid_.h[1], grid_.h[2]}};
@@ -92,11 +101,12 @@ std::vector<ParticleState> ParticleTracker::measure(const SolidPhase& solids, co
     for (int a = 0; a < 3; ++a) c_local[a] = ref[a] + m[a] / s.volume;
     // unwrap x: move by whole periods to stay nearest the previous centroid
     const double prev = last_x_[n];
-    s.centre[0] = c_local[0] + lx * std::round((prev - c_local[0]) / lx);
+    last_x_[n] = c_local[0] + lx * std::round((prev - c_local[0]) / lx);
+    s.centre[0] = last_x_[n] + frame.offset;
     s.centre[1] = c_local[1];
     s.centre[2] = c_local[2];
-    last_x_[n] = s.centre[0];
     for (int a = 0; a < 3; ++a) s.velocity[a] = first.s[F::U + a] / s.volume;
+    s.velocity[0] += frame.velocity;
     // covariance about the centroid; an ellipsoid with semi-axis a has <x^2> = a^2 / 5
     const int ra[6] = {0, 1, 2, 0, 0, 1}, rb[6] = {0, 1, 2, 1, 2, 2};
     double cov[3][3];
@@ -123,7 +133,8 @@ std::vector<ParticleState> ParticleTracker::measure(const SolidPhase& solids, co
     // a major axis along the radial direction is +pi/2 however round-off tilts it
     if (angle <= -M_PI / 2 + 1e-9) angle += M_PI;
     s.angle = angle;
-    auto forces = kernels::body_forces(body.psi, flow.p, flow.vel, body.b, body.G, body.mu_s, grid_.h, box);
+    auto forces = kernels::body_forces(body.psi, flow.p, flow.vel, body.b, body.G, body.mu_s, frame.velocity,
+                                       grid_.h, box);
     double f[12];
     for (int a = 0; a < 3; ++a) {
       f[a] = forces.pressure[a];

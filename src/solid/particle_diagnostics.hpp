@@ -25,12 +25,21 @@ struct ParticleState {
   double force_total() const { return force[0] + force[1] + force[2] + force[3]; }
 };
 
+// The grid's frame in the laboratory: it moves along x with `velocity` and has moved by `offset`.
+struct GridFrame {
+  double velocity = 0.0;
+  double offset = 0.0;
+};
+
 class ParticleTracker {
  public:
   ParticleTracker(const CaseConfig& cfg, const Grid& grid, const Comm& comm);
-  // Measures every body; keeps the unwrapped x-centroid continuous between calls.
-  std::vector<ParticleState> measure(const SolidPhase& solids, const FlowState& flow);
-  // The unwrapped x of each body so far (for checkpoints).
+  // Measures every body in the laboratory frame; keeps the unwrapped x-centroid continuous
+  // between calls.
+  std::vector<ParticleState> measure(const SolidPhase& solids, const FlowState& flow, const GridFrame& frame = {});
+  // Mean x-velocity of one body in the laboratory (two reductions; for a frame that follows it).
+  double mean_x_velocity(const SolidPhase& solids, const FlowState& flow, size_t body, double frame_velocity) const;
+  // The unwrapped x of each body in the grid's frame so far (for checkpoints).
   std::vector<double> unwrapped_x() const { return last_x_; }
   void set_unwrapped_x(std::vector<double> x) { last_x_ = std::move(x); }
 

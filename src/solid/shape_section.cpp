@@ -67,7 +67,7 @@ double sample_owned(const HostField3& f, const Grid& g, double x, double y, doub
 }  // namespace
 
 void write_shape_sections(const std::string& path, const Grid& g, MPI_Comm comm, const SolidPhase& solids,
-                          const std::vector<ParticleState>& states) {
+                          const std::vector<ParticleState>& states, double frame_offset) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   std::ofstream out;
@@ -90,7 +90,7 @@ void write_shape_sections(const std::string& path, const Grid& g, MPI_Comm comm,
     for (int a = 0; a < nx; ++a)
       for (int b = 0; b < ns; ++b) {
         const double xr = -reach + a * ds, s = r_c - reach + b * ds;
-        double x = std::fmod(st.centre[0] + xr, lx);
+        double x = std::fmod(st.centre[0] - frame_offset + xr, lx);
         if (x < 0) x += lx;
         const double y = s * st.radial_dir[1], z = s * st.radial_dir[2];
         if (std::fabs(y) > 0.5 * g.length[1] - 0.5 * g.h[1] || std::fabs(z) > 0.5 * g.length[2] - 0.5 * g.h[2]) continue;

@@ -22,8 +22,9 @@ std::vector<ContourSegment> contour_segments(const std::vector<double>& values, 
                                              double dx, double ds, double level);
 
 // Samples every body's psi in its (x, radial) plane and appends its segments to `path`
-// (columns solid,segment,x,s; two rows per segment). Collective; rank 0 writes.
+// (columns solid,segment,x,s; two rows per segment). Collective; rank 0 writes. The states' x is
+// the laboratory's; frame_offset is where the grid's origin is in the laboratory.
 void write_shape_sections(const std::string& path, const Grid& grid, MPI_Comm comm, const SolidPhase& solids,
-                          const std::vector<ParticleState>& states);
+                          const std::vector<ParticleState>& states, double frame_offset = 0.0);
 
 }  // namespace eulerfsi

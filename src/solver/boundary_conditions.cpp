@@ -28,10 +28,12 @@ void BoundaryConditions::fill_velocity(const kernels::Velocity& vel, double t) c
       } else if (c == dir) {
         kernels::fill_ghosts(vel.c[c], dir, grid_.n[dir], GhostRule::Normal, 0.0, 0.0);
       } else {
-        // only u on the y walls moves (Couette); everything else is no-slip on fixed walls
+        // only u on the y walls moves in the laboratory (Couette); in the grid's frame every wall
+        // also moves with -frame_u in x
         const bool moving = (c == 0 && dir == 1);
-        kernels::fill_ghosts(vel.c[c], dir, grid_.n[dir], GhostRule::Tangent, moving ? walls.u_lo : 0.0,
-                             moving ? walls.u_hi : 0.0);
+        const double shift = c == 0 ? -frame_u_ : 0.0;
+        kernels::fill_ghosts(vel.c[c], dir, grid_.n[dir], GhostRule::Tangent, (moving ? walls.u_lo : 0.0) + shift,
+                             (moving ? walls.u_hi : 0.0) + shift);
       }
     }
   }

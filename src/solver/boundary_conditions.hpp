@@ -20,6 +20,8 @@ class BoundaryConditions {
   // Moving-wall velocity at time t (Couette, optionally oscillating).
   WallVelocity walls_at(double t) const;
   void fill_velocity(const kernels::Velocity& vel, double t) const;
+  // The grid's x-velocity in the laboratory: every wall moves with -frame_u relative to it.
+  void set_frame_velocity(double frame_u) { frame_u_ = frame_u; }
   // Cell-centred scalar with zero normal gradient at walls (pressure, psi, B components).
   void fill_scalar(const Field3& f) const;
 
@@ -28,6 +30,7 @@ class BoundaryConditions {
   MPI_Comm comm_;
   double wall_u_[2];
   double wall_frequency_;
+  double frame_u_ = 0.0;
 };
 
 }  // namespace eulerfsi

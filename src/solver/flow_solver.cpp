@@ -101,7 +101,9 @@ void FlowSolver::advance(double t, double dt, SolidPhase* solids) {
     const double penal = alpha_dt / cfg_.flow.penalization_eta;
     static const char* labels[3] = {"eulerfsi::rk3::update_u", "eulerfsi::rk3::update_v", "eulerfsi::rk3::update_w"};
     for (int c = 0; c < 3; ++c) {
-      kernels::rk3_update(vel.c[c], rhs_new_.c[c], rhs_old_.c[c], masks_.chi[c], dt, gamma, zeta, penal, box, labels[c]);
+      // the wall is at rest in the laboratory: u_wall = -frame_u in the grid's frame
+      kernels::rk3_update(vel.c[c], rhs_new_.c[c], rhs_old_.c[c], masks_.chi[c], dt, gamma, zeta, penal, box, labels[c],
+                          c == 0 ? -frame_u_ : 0.0);
       std::swap(rhs_new_.c[c], rhs_old_.c[c]);
     }
     bc_.fill_velocity(vel, t_next);
@@ -112,6 +114,17 @@ void FlowSolver::advance(double t, double dt, SolidPhase* solids) {
     bc_.fill_velocity(vel, t_next);
   }
   if (impose_flow_rate_) dpdx_ = dpdx_step;
+  frame_x_ += frame_u_ * dt;
+}
+
+void FlowSolver::set_frame_velocity(double u_frame, double t) {
+  const double du = u_frame - frame_u_;
+  if (du == 0.0) return;
+  // u_lab = u + frame_u is unchanged: u -= du on every x-face, walls included
+  kernels::add_open_x_velocity(state_.vel.c[0], kernels::Mask2(), -du, grid_.interior());
+  frame_u_ = u_frame;
+  bc_.set_frame_velocity(u_frame);
+  bc_.fill_velocity(state_.vel, t);
 }
 
 // Leaves the ghosts of the velocity stale: the caller refills them once it is done with it.
@@ -124,10 +137,11 @@ void FlowSolver::project(double alpha_dt) {
   kernels::subtract_gradient(vel.c[0], vel.c[1], vel.c[2], state_.p, grid_.h, alpha_dt, box);
 }
 
-// Adds du to u on the open faces so the bulk velocity is U_b again; returns du.
+// Adds du to u on the open faces so the bulk velocity is U_b again (U_b - frame_u in the grid's
+// frame); returns du.
 double FlowSolver::correct_flow_rate() {
   const double bulk = bulk_velocity();
-  const double du = cfg_.flow.bulk_velocity - bulk;
+  const double du = cfg_.flow.bulk_velocity - frame_u_ - bulk;
   kernels::add_open_x_velocity(state_.vel.c[0], masks_.chi[0], du, grid_.interior());
   return du;
 }
@@ -141,10 +155,11 @@ FlowDiagnostics FlowSolver::diagnostics(double dt, double wave_speed) const {
   const auto& u = state_.vel.c;
   FlowDiagnostics d;
   d.cfl = dt * comm_.max(kernels::max_signal_rate(u[0], u[1], u[2], grid_.h, wave_speed, box));
-  d.bulk_u = bulk_velocity();
+  d.bulk_u = bulk_velocity() + frame_u_;
+  d.frame_u = frame_u_;
   d.dpdx = dpdx_;
   d.max_div = comm_.max(kernels::max_abs_divergence(u[0], u[1], u[2], grid_.h, box));
-  d.kinetic_energy = comm_.sum(kernels::kinetic_energy_sum(u[0], u[1], u[2], box)) / double(grid_.global_cells());
+  d.kinetic_energy = comm_.sum(kernels::kinetic_energy_sum(u[0], u[1], u[2], box, frame_u_)) / double(grid_.global_cells());
   bool ok = true;
   for (int c = 0; c < 3; ++c) ok = ok && kernels::all_finite(u[c], box);
   d.finite = !comm_.any(!ok);

@@ -18,7 +18,8 @@ struct FlowDiagnostics {
   double bulk_u = 0.0;
   double dpdx = 0.0;
   double max_div = 0.0;
-  double kinetic_energy = 0.0;  // volume average of |u|^2 / 2
+  double kinetic_energy = 0.0;  // volume average of |u|^2 / 2 (laboratory frame)
+  double frame_u = 0.0;         // the grid's x-velocity
   bool finite = true;
 };
 
@@ -52,8 +53,21 @@ class FlowSolver {
   double dpdx() const { return dpdx_; }
   void set_dpdx(double v) { dpdx_ = v; }
   bool has_flow_rate() const { return impose_flow_rate_; }
-  // bulk velocity over the open cross-section
+  // bulk velocity over the open cross-section, in the grid's frame
   double bulk_velocity() const;
+
+  // The grid's frame moves along x with frame_velocity(); the state holds u - frame_velocity.
+  // Changing it shifts u (a Galilean transformation: the laboratory flow is unchanged).
+  double frame_velocity() const { return frame_u_; }
+  void set_frame_velocity(double u_frame, double t);
+  // x of the grid's origin in the laboratory (integral of the frame velocity)
+  double frame_offset() const { return frame_x_; }
+  // A checkpoint's frame: the stored velocity is already relative to it (no shift).
+  void restore_frame(double u_frame, double offset) {
+    frame_u_ = u_frame;
+    frame_x_ = offset;
+    bc_.set_frame_velocity(u_frame);
+  }
 
  private:
   void build_wall_masks();
@@ -73,6 +87,7 @@ class FlowSolver {
   double open_faces_ = 1.0;  // global count of x-faces inside the flow cross-section
   bool impose_flow_rate_ = false;
   double dpdx_ = 0.0;
+  double frame_u_ = 0.0, frame_x_ = 0.0;
 };
 
 }  // namespace eulerfsi
