@@ -169,25 +169,15 @@ inline void add_to_interface(const Field3& psi, double c, const Box& box) {
   });
 }
 
-// B = I where psi < psi_min: outside the solid B has no meaning and the stretching term would
-// let it grow without bound in shear; the stress there is psi G (B - I), so the reset is harmless.
 // B = F F^T is symmetric positive definite. WENO reconstructs each component on its own and can
 // overshoot where B jumps (the edge of the solid), leaving a B with a negative eigenvalue: a
 // material of negative stiffness whose stress makes the coupled system blow up. Sylvester's
-// criterion (all leading principal minors > 0) finds such cells; they are reset to I too.
+// criterion (all leading principal minors > 0) finds such cells (kernels/tensor_extension.hpp
+// then replaces them by the mean of their neighbours).
 KOKKOS_INLINE_FUNCTION bool positive_definite(double xx, double yy, double zz, double xy, double xz, double yz) {
   const double m2 = xx * yy - xy * xy;
   const double det = xx * (yy * zz - yz * yz) - xy * (xy * zz - yz * xz) + xz * (xy * yz - yy * xz);
   return xx > 0.0 && m2 > 0.0 && det > 0.0;
-}
-
-inline void reset_tensor_outside(const Tensor6& b, const Field3& psi, double psi_min, const Box& box) {
-  for_each_cell("eulerfsi::solid::b_reset", box, KOKKOS_LAMBDA(int i, int j, int k) {
-    const bool spd = positive_definite(b.c[XX](i, j, k), b.c[YY](i, j, k), b.c[ZZ](i, j, k), b.c[XY](i, j, k),
-                                       b.c[XZ](i, j, k), b.c[YZ](i, j, k));
-    if (psi(i, j, k) < psi_min || !spd)
-      for (int s = 0; s < kTensorComponents; ++s) b.c[s](i, j, k) = s < 3 ? 1.0 : 0.0;
-  });
 }
 
 }  // namespace eulerfsi::kernels

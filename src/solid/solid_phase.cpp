@@ -9,6 +9,7 @@
 #include "kernels/elastic_force.hpp"
 #include "kernels/interface_sharpening.hpp"
 #include "kernels/solid_transport.hpp"
+#include "kernels/tensor_extension.hpp"
 #include "solver/flow_solver.hpp"
 #include "solver/rk3.hpp"
 
@@ -16,8 +17,13 @@ namespace eulerfsi {
 
 namespace {
 
-// B outside the solid is reset to I below this volume fraction (it is multiplied by psi there).
+// The transport of B skips cells whose stencil holds no solid at all (psi below this).
 constexpr double kPsiReset = 1e-6;
+// B is the solid's own where psi >= 1/2 (the cell centre inside the interface); it is extended
+// from there over as many cells as the WENO5 stencil reaches, and is I beyond
+// (kernels/tensor_extension.hpp).
+constexpr double kPsiSolid = 0.5;
+constexpr int kExtensionBand = 3;
 // Interface sharpening (opt-in per solid): width eps = h/2 (psi from 0.12 to 0.88 over 2 cells);
 // the pseudo-time step (solid.sharpening, in units of h) must stay below h^2 / (6 eps) = h / 3.
 constexpr double kSharpenWidth = 0.5;
@@ -130,11 +136,25 @@ void SolidPhase::advance_substep(const kernels::Velocity& vel, double dt, int su
     std::swap(body.psi_rhs, body.psi_rhs_old);
     std::swap(body.b_rhs, body.b_rhs_old);
     clip_conserving(body.psi);
-    kernels::reset_tensor_outside(body.b, body.psi, kPsiReset, box);
+    extend_tensor(body);
     bc_->fill_scalar(body.psi);
     if (substep == 2 && body.cfg.sharpening > 0.0) sharpen(body);
     for (int c = 0; c < kernels::kTensorComponents; ++c) bc_->fill_scalar(body.b.c[c]);
   }
+}
+
+// B outside the solid: the solid's B extended over a band of kExtensionBand cells, I beyond;
+// scratch: psi_rhs, which holds nothing the next substep needs.
+void SolidPhase::extend_tensor(SolidBody& body) const {
+  const Box box = grid_.interior();
+  const Field3 known = body.psi_rhs;
+  kernels::mark_solid_tensor(known, body.psi, body.b, kPsiSolid, box);
+  for (int sweep = 1; sweep <= kExtensionBand; ++sweep) {
+    bc_->fill_scalar(known);
+    for (int c = 0; c < kernels::kTensorComponents; ++c) bc_->fill_scalar(body.b.c[c]);
+    kernels::extend_tensor_sweep(body.b, known, sweep, box);
+  }
+  kernels::reset_unknown_tensor(body.b, known, box);
 }
 
 // Bounded and conservative: clip psi to [0, 1], then give the clipped volume back to the

@@ -49,6 +49,7 @@ class SolidPhase {
 
  private:
   void sharpen(SolidBody& body);
+  void extend_tensor(SolidBody& body) const;
   void clip_conserving(const Field3& psi) const;
 
   CaseConfig cfg_;

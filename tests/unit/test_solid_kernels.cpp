@@ -1,12 +1,15 @@
 // Solid-phase kernels: psi and B transport, stretching, elastic force, body moments.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "kernels/elastic_force.hpp"
 #include "kernels/particle_moments.hpp"
 #include "kernels/solid_transport.hpp"
+#include "kernels/tensor_extension.hpp"
 #include "support/periodic_fill.hpp"
 
 using namespace eulerfsi;
@@ -259,36 +262,112 @@ TEST(SolidTransport, SimpleShearMatchesExactDeformation) {
   EXPECT_LT(std::fabs(det - 1.0), 1e-12);
 }
 
-// Outside the solid B is reset to I, inside a positive definite B is kept and one that lost
-// positive definiteness is reset; psi is clipped into [0, 1].
-TEST(SolidTransport, ResetAndClip) {
+// psi is clipped into [0, 1].
+TEST(SolidTransport, ClipVolumeFraction) {
   const Mesh m(4, 4, 4, 1.0, 1.0, 1.0);
   Field3 psi = m.field("psi");
-  Tensor6 b = m.tensor("b");
-  // [[5,2,2],[2,5,2],[2,2,5]]: eigenvalues 9, 3, 3
-  for (int c = 0; c < 6; ++c) Kokkos::deep_copy(b.c[c], c < 3 ? 5.0 : 2.0);
   Kokkos::deep_copy(psi, 1.2);
   Kokkos::parallel_for("test::psi2", m.all().policy(), KOKKOS_LAMBDA(int i, int j, int k) {
-    if (i < 5) psi(i, j, k) = -0.01;  // "outside"
+    if (i < 5) psi(i, j, k) = -0.01;
   });
-  kernels::reset_tensor_outside(b, psi, 1e-3, m.all());
   kernels::clip_volume_fraction(psi, m.all());
   auto hp = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), psi);
-  auto hxx = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), b.c[0]);
-  auto hxy = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), b.c[3]);
   EXPECT_EQ(hp(0, 0, 0), 0.0);
   EXPECT_EQ(hp(6, 0, 0), 1.0);
-  EXPECT_EQ(hxx(0, 1, 1), 1.0);
-  EXPECT_EQ(hxy(0, 1, 1), 0.0);
-  EXPECT_EQ(hxx(6, 1, 1), 5.0);
-  EXPECT_EQ(hxy(6, 1, 1), 2.0);
-  // inside, but [[5,5,5],[5,5,5],[5,5,5]] is singular: reset to I
-  for (int c = 3; c < 6; ++c) Kokkos::deep_copy(b.c[c], 5.0);
-  kernels::reset_tensor_outside(b, psi, 1e-3, m.all());
-  Kokkos::deep_copy(hxx, b.c[0]);
-  Kokkos::deep_copy(hxy, b.c[3]);
-  EXPECT_EQ(hxx(6, 1, 1), 1.0);
-  EXPECT_EQ(hxy(6, 1, 1), 0.0);
+}
+
+// B outside the solid (kernels/tensor_extension.hpp): a sphere of psi holding a linear SPD B,
+// garbage outside (the fluid's strain, 1e3 I + shear) and one interior cell that lost positive
+// definiteness. After the extension: the solid's own B is untouched bit for bit; the bad interior
+// cell holds the mean of its six neighbours, which for a linear field is the field's value to
+// round-off; every cell of the band holds a convex combination of the solid's values (inside
+// their range, positive definite); nothing farther than `band` face steps from the solid keeps
+// anything but I.
+TEST(SolidTransport, TensorExtensionFromTheSolid) {
+  const int n = 16, band = 3;
+  const Mesh m(n, n, n, 1.0, 1.0, 1.0);
+  const double lo[3] = {0.0, 0.0, 0.0}, L[3] = {1.0, 1.0, 1.0}, c[3] = {0.5, 0.5, 0.5};
+  Field3 psi = m.field("psi"), known = m.field("known");
+  fill_sphere(psi, m, lo, c, 0.3, L);
+  Tensor6 b = m.tensor("b");
+  const double h = m.h[0];
+  const int bad = kGhost + n / 2;  // the sphere's centre cell
+  // B = I + linear terms: SPD for |x|, |y|, |z| <= 1 (diagonally dominant)
+  auto linear = [](int s, double x, double y, double z) {
+    const double v[6] = {1.0 + 0.2 * x, 1.1 - 0.1 * y, 1.0 + 0.15 * z, 0.05 * z, -0.04 * x, 0.03 * y};
+    return v[s];
+  };
+  std::vector<Kokkos::View<double***, Kokkos::LayoutRight, Kokkos::HostSpace>> hb;
+  for (int s = 0; s < 6; ++s) hb.push_back(Kokkos::create_mirror_view(b.c[s]));
+  auto hpsi = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), psi);
+  for (int i = 0; i < m.e[0]; ++i)
+    for (int j = 0; j < m.e[1]; ++j)
+      for (int k = 0; k < m.e[2]; ++k) {
+        const double x = (i - kGhost + 0.5) * h, y = (j - kGhost + 0.5) * h, z = (k - kGhost + 0.5) * h;
+        for (int s = 0; s < 6; ++s)
+          hb[s](i, j, k) = hpsi(i, j, k) >= 0.5 ? linear(s, x, y, z) : (s < 3 ? 1e3 : 40.0 * (s - 2));
+      }
+  for (int s = 0; s < 6; ++s) hb[s](bad, bad, bad) = 5.0;  // singular: lost positive definiteness
+  for (int s = 0; s < 6; ++s) Kokkos::deep_copy(b.c[s], hb[s]);
+
+  kernels::mark_solid_tensor(known, psi, b, 0.5, m.interior());
+  for (int sweep = 1; sweep <= band; ++sweep) {
+    test_support::fill_periodic(known, m.n);
+    for (int s = 0; s < 6; ++s) test_support::fill_periodic(b.c[s], m.n);
+    kernels::extend_tensor_sweep(b, known, sweep, m.interior());
+  }
+  kernels::reset_unknown_tensor(b, known, m.interior());
+
+  std::vector<Kokkos::View<double***, Kokkos::LayoutRight, Kokkos::HostSpace>> out;
+  for (int s = 0; s < 6; ++s) out.push_back(Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), b.c[s]));
+  double lo_s[6], hi_s[6];
+  for (int s = 0; s < 6; ++s) lo_s[s] = 1e300, hi_s[s] = -1e300;
+  const Box in = m.interior();
+  for (int i = in.lo[0]; i < in.hi[0]; ++i)
+    for (int j = in.lo[1]; j < in.hi[1]; ++j)
+      for (int k = in.lo[2]; k < in.hi[2]; ++k)
+        if (hpsi(i, j, k) >= 0.5 && !(i == bad && j == bad && k == bad))
+          for (int s = 0; s < 6; ++s) lo_s[s] = std::min(lo_s[s], hb[s](i, j, k)), hi_s[s] = std::max(hi_s[s], hb[s](i, j, k));
+  // face-step distance to the nearest solid cell (periodic), by brute force
+  auto distance = [&](int i, int j, int k) {
+    int best = 1 << 20;
+    for (int a = in.lo[0]; a < in.hi[0]; ++a)
+      for (int q = in.lo[1]; q < in.hi[1]; ++q)
+        for (int r = in.lo[2]; r < in.hi[2]; ++r) {
+          if (hpsi(a, q, r) < 0.5) continue;
+          auto per = [n](int d) { d = std::abs(d) % n; return std::min(d, n - d); };
+          best = std::min(best, per(a - i) + per(q - j) + per(r - k));
+        }
+    return best;
+  };
+  int untouched = 0, extended = 0, identity = 0;
+  for (int i = in.lo[0]; i < in.hi[0]; ++i)
+    for (int j = in.lo[1]; j < in.hi[1]; ++j)
+      for (int k = in.lo[2]; k < in.hi[2]; ++k) {
+        double v[6];
+        for (int s = 0; s < 6; ++s) v[s] = out[s](i, j, k);
+        if (i == bad && j == bad && k == bad) {
+          const double x = (i - kGhost + 0.5) * h, y = (j - kGhost + 0.5) * h, z = (k - kGhost + 0.5) * h;
+          for (int s = 0; s < 6; ++s) EXPECT_NEAR(v[s], linear(s, x, y, z), 1e-14);
+        } else if (hpsi(i, j, k) >= 0.5) {
+          for (int s = 0; s < 6; ++s) EXPECT_EQ(v[s], hb[s](i, j, k));
+          ++untouched;
+        } else if (distance(i, j, k) <= band) {
+          for (int s = 0; s < 6; ++s) {
+            EXPECT_GE(v[s], lo_s[s] - 1e-15);
+            EXPECT_LE(v[s], hi_s[s] + 1e-15);
+          }
+          EXPECT_TRUE(kernels::positive_definite(v[0], v[1], v[2], v[3], v[4], v[5]));
+          ++extended;
+        } else {
+          for (int s = 0; s < 6; ++s) EXPECT_EQ(v[s], s < 3 ? 1.0 : 0.0);
+          ++identity;
+        }
+      }
+  std::printf("extension: %d solid cells kept, %d band cells extended, %d far cells set to I\n", untouched, extended,
+              identity);
+  EXPECT_GT(extended, 0);
+  EXPECT_GT(identity, 0);
 }
 
 namespace {
