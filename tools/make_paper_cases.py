@@ -62,6 +62,8 @@ geometry = "pipe"
 Re = {float(re)}
 bulk_velocity = 1.0
 initial = "{"rest" if rest else "laminar"}"
+# the grid follows the particle along x (numerics only; outputs stay in the laboratory frame)
+frame_velocity = "particle"
 
 [time]
 cfl = 0.2
