@@ -34,16 +34,24 @@ inline void smooth_121(const Field3& out, const Field3& psi, const Box& box) {
   });
 }
 
-// n = g / (|g| + 1e-12),  g_D = (psi(c + e_D) - psi(c - e_D)) / (2 h_D)  at cell centres;
+constexpr double kNormalCutoff = 1e-2;
+
+// n = g / |g| where |g| h >= kNormalCutoff, else 0,  g_D = (psi(c + e_D) - psi(c - e_D)) / (2 h_D)  at cell centres;
 // n = 0 exactly where psi is flat.
 inline void interface_normals(const Field3& nx, const Field3& ny, const Field3& nz, const Field3& psi, const double h[3],
                               const Box& box) {
   const double ix = 0.5 / h[0], iy = 0.5 / h[1], iz = 0.5 / h[2];
+  const double hmin = compat::fmin(h[0], compat::fmin(h[1], h[2]));
   for_each_cell("eulerfsi::solid::normals", box, KOKKOS_LAMBDA(int i, int j, int k) {
     const double gx = (psi(i + 1, j, k) - psi(i - 1, j, k)) * ix;
     const double gy = (psi(i, j + 1, k) - psi(i, j - 1, k)) * iy;
     const double gz = (psi(i, j, k + 1) - psi(i, j, k - 1)) * iz;
-    const double inv = 1.0 / (compat::sqrt(gx * gx + gy * gy + gz * gz) + 1e-12);
+    const double g = compat::sqrt(gx * gx + gy * gy + gz * gz);
+    // away from the interface (psi changes by < 1 % per cell: psi < 0.005 or > 0.995 on the
+    // equilibrium profile) n = 0: the normals of the round-off/WENO noise there are random, and
+    // compression along them gathers the noise into spurious blobs (no tangential diffusion
+    // damps it, unlike the isotropic form)
+    const double inv = g * hmin < kNormalCutoff ? 0.0 : 1.0 / g;
     nx(i, j, k) = gx * inv;
     ny(i, j, k) = gy * inv;
     nz(i, j, k) = gz * inv;

@@ -152,8 +152,11 @@ TEST(InterfaceSharpening, DiagonalTanhProfileIsAFixedPoint) {
     kernels::interface_normals(nx, ny, nz, psi, m.h, m.grown(1));
     kernels::sharpening_rhs(rhs, psi, nx, ny, nz, eps, m.h, m.interior());
     double mx = 0.0;
+    // inside 0.05 < psi < 0.95: beyond it the normals are cut off (kNormalCutoff: psi changes by
+    // < 1 % per cell), which stops the flux abruptly in the far tail of a wide profile (eps = 4 h:
+    // psi < 0.04); with the solver's eps = h/2 the cut lies at psi < 0.005
     reduce_cells("test::max", m.interior(), KOKKOS_LAMBDA(int i, int j, int k, double& a) {
-      a = compat::fmax(a, compat::fabs(rhs(i, j, k)));
+      if (psi(i, j, k) > 0.05 && psi(i, j, k) < 0.95) a = compat::fmax(a, compat::fabs(rhs(i, j, k)));
     }, Kokkos::Max<double>(mx));
     rel[r] = mx / (0.25 / eps);
     std::printf("diagonal tanh, eps = %.0f h: max |rhs| = %.3e, relative to 1/(4 eps): %.3e\n", eps / h, mx, rel[r]);
