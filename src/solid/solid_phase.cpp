@@ -167,16 +167,15 @@ void SolidPhase::clip_conserving(const Field3& psi) const {
     kernels::add_to_interface(psi, compat::fmax(-1.0, compat::fmin(1.0, removed / weight)), box);
 }
 
-// One conservative sharpening step of psi (Olsson & Kreiss 2005); scratch: the rhs buffers,
-// which hold nothing the next substep needs.
+// One conservative sharpening step of psi (Olsson, Kreiss & Zahedi 2007); scratch: the rhs
+// buffers, which hold nothing the next substep needs.
 void SolidPhase::sharpen(SolidBody& body) {
   const Box box = grid_.interior();
   const double h = std::min(grid_.h[0], std::min(grid_.h[1], grid_.h[2]));
-  // normals on the owned cells and one ghost layer: the face fluxes of the edge cells need them
-  const Box grown{{box.lo[0] - 1, box.lo[1] - 1, box.lo[2] - 1}, {box.hi[0] + 1, box.hi[1] + 1, box.hi[2] + 1}};
+  // scratch: B's rhs buffers (normals and the smoothed psi), free between substeps
   const auto& n = body.b_rhs;
-  kernels::interface_normals(n.c[0], n.c[1], n.c[2], body.psi, grid_.h, grown);
-  kernels::sharpening_rhs(body.psi_rhs, body.psi, n.c[0], n.c[1], n.c[2], kSharpenWidth * h, grid_.h, box);
+  kernels::sharpening_step_rhs(body.psi_rhs, body.psi, n.c[3], n.c[0], n.c[1], n.c[2], kSharpenWidth * h, grid_.h,
+                               box);
   kernels::rk3_scalar_update(body.psi, body.psi_rhs, body.psi_rhs, body.cfg.sharpening * h, 1.0, 0.0, box);
   clip_conserving(body.psi);
   bc_->fill_scalar(body.psi);
