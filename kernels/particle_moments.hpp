@@ -67,8 +67,10 @@ struct FirstMomentTerm {
   CellCentres xc;
   double kx;  // 2 pi / Lx
   int what;
+  double psi_min;  // cells below it do not count
   KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k, double& acc) const {
     const double p = psi(i, j, k);
+    if (p < psi_min) return;
     double f = 1.0;
     switch (what) {
       case BodyFirstMoments::Y: f = xc(1, j); break;
@@ -89,7 +91,9 @@ struct SecondMomentTerm {
   CellCentres xc;
   double c[3], period[3];
   int what;  // 0..2: m1, 3..8: m2
+  double psi_min;
   KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k, double& acc) const {
+    if (psi(i, j, k) < psi_min) return;
     const double d[3] = {min_image(xc(0, i) - c[0], period[0]), min_image(xc(1, j) - c[1], period[1]),
                          min_image(xc(2, k) - c[2], period[2])};
     const int ra[6] = {0, 1, 2, 0, 0, 1}, rb[6] = {0, 1, 2, 1, 2, 2};
@@ -194,34 +198,36 @@ struct ForceTerm {
 
 }  // namespace detail
 
-// First moments of psi over `box` (owned cells), each times dV. Lx: periodic length in x.
+// First moments of psi over `box` (owned cells), each times dV. Lx: periodic length in x. Cells
+// with psi < psi_min are left out (the faint halo of numerical diffusion).
 inline BodyFirstMoments body_first_moments(const Field3& psi, const Velocity& vel, const CellCentres& xc, double Lx,
-                                           const Box& box) {
+                                           const Box& box, double psi_min = 0.0) {
   const double dv = xc.h[0] * xc.h[1] * xc.h[2];
   BodyFirstMoments r{};
   for (int q = 0; q < BodyFirstMoments::Count; ++q) {
-    detail::FirstMomentTerm f{psi, vel.c[0], vel.c[1], vel.c[2], xc, 2.0 * M_PI / Lx, q};
+    detail::FirstMomentTerm f{psi, vel.c[0], vel.c[1], vel.c[2], xc, 2.0 * M_PI / Lx, q, psi_min};
     r.s[q] = dv * detail::sum_over("eulerfsi::diag::body_first_moments", box, f);
   }
   return r;
 }
 
 // The body's mean x-velocity sum psi u_c / sum psi as {sum psi, sum psi u_c} (times dV omitted).
-inline void body_x_momentum(const Field3& psi, const Velocity& vel, const Box& box, double out[2]) {
+inline void body_x_momentum(const Field3& psi, const Velocity& vel, const Box& box, double out[2],
+                            double psi_min = 0.0) {
   const CellCentres none{{0, 0, 0}, {1, 1, 1}};
-  detail::FirstMomentTerm volume{psi, vel.c[0], vel.c[1], vel.c[2], none, 0.0, BodyFirstMoments::Volume};
-  detail::FirstMomentTerm momentum{psi, vel.c[0], vel.c[1], vel.c[2], none, 0.0, BodyFirstMoments::U};
+  detail::FirstMomentTerm volume{psi, vel.c[0], vel.c[1], vel.c[2], none, 0.0, BodyFirstMoments::Volume, psi_min};
+  detail::FirstMomentTerm momentum{psi, vel.c[0], vel.c[1], vel.c[2], none, 0.0, BodyFirstMoments::U, psi_min};
   out[0] = detail::sum_over("eulerfsi::diag::body_volume", box, volume);
   out[1] = detail::sum_over("eulerfsi::diag::body_x_momentum", box, momentum);
 }
 
 // Moments about the point c; period[d] = domain length in a periodic direction, 0 otherwise.
 inline BodySecondMoments body_second_moments(const Field3& psi, const CellCentres& xc, const double c[3],
-                                             const double period[3], const Box& box) {
+                                             const double period[3], const Box& box, double psi_min = 0.0) {
   const double dv = xc.h[0] * xc.h[1] * xc.h[2];
   BodySecondMoments r{};
   for (int q = 0; q < BodySecondMoments::Count; ++q) {
-    detail::SecondMomentTerm f{psi, xc, {c[0], c[1], c[2]}, {period[0], period[1], period[2]}, q};
+    detail::SecondMomentTerm f{psi, xc, {c[0], c[1], c[2]}, {period[0], period[1], period[2]}, q, psi_min};
     const double s = dv * detail::sum_over("eulerfsi::diag::body_second_moments", box, f);
     if (q < 3) r.m1[q] = s; else r.m2[q - 3] = s;
   }
