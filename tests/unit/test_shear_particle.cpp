@@ -189,6 +189,11 @@ TEST(ShearParticle, DeformationAndInclinationMatchSmallDeformationTheory) {
 //   OKZ, smoothed, upwind face:   0.099 (-21 %) / 0.0962 -> 0.0958 (steady), angle 0.746
 //   OKZ, smoothed, n = 0 where |grad psi| h < 1e-2 (the committed form), 0.1: 0.156 (+25 %) /
 //     0.156 -> 0.148 (-5 %/strain), angle 0.597; 0.05: 0.158 (+26 %) / 0.157 -> 0.149, angle 0.614
+// With B extended outside the solid (no fluid-strained skin) and the diagnostics leaving out psi < 0.05,
+// sharpening off: D over [1, 1.5] 0.128 (+2.4 %), steady there (0.1282 -> 0.1277), angle 0.657; but over
+// strains [2, 3] D still climbs 0.1316 -> 0.1468 (+11 %/strain), angle 0.691: the psi = 1/2 surface
+// itself elongates (its own D was 0.167 at strain 2.9), so the drift is the WENO transport of psi in
+// the tank-treading flow, not the measurement and not B outside the solid.
 // Checks: steady D (< 1 % change over the last strain unit of three) and linear response at Ca = 0.05.
 TEST(ShearParticle, DISABLED_DeformationBecomesSteady) {
   ASSERT_FALSE(case_file().empty()) << "EULERFSI_TEST_DATA is not set (CTest sets it to the tests/ directory)";
