@@ -80,8 +80,8 @@ void truncate_series_after(const std::string& csv_path, long step) {
   fs::rename(tmp, csv_path);
 }
 
-std::vector<std::pair<long, double>> field_history_until(const std::string& run_dir, long step) {
-  std::vector<std::pair<long, double>> out;
+std::vector<Snapshot> field_history_until(const std::string& run_dir, long step) {
+  std::vector<Snapshot> out;
   const fs::path dir = fs::path(run_dir) / "fields";
   if (!fs::is_directory(dir)) return out;
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
@@ -92,16 +92,21 @@ std::vector<std::pair<long, double>> field_history_until(const std::string& run_
     if (s > step) continue;
     const hid_t f = H5Fopen(entry.path().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
     if (f < 0) continue;  // a snapshot torn by a crash is left out of the index
-    double t = 0.0;
+    double t = 0.0, x_offset = 0.0;
     const hid_t a = H5Aopen(f, "time", H5P_DEFAULT);
     if (a >= 0) {
       H5Aread(a, H5T_NATIVE_DOUBLE, &t);
       H5Aclose(a);
-      out.emplace_back(s, t);
+      if (H5Aexists(f, "frame_x") > 0) {
+        const hid_t x = H5Aopen(f, "frame_x", H5P_DEFAULT);
+        H5Aread(x, H5T_NATIVE_DOUBLE, &x_offset);
+        H5Aclose(x);
+      }
+      out.push_back({s, t, x_offset});
     }
     H5Fclose(f);
   }
-  std::sort(out.begin(), out.end());
+  std::sort(out.begin(), out.end(), [](const Snapshot& a, const Snapshot& b) { return a.step < b.step; });
   return out;
 }
 

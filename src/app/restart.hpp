@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "config/case_config.hpp"
+#include "io/field_writer.hpp"
 
 namespace eulerfsi {
 
@@ -18,6 +19,6 @@ std::vector<std::string> differing_physical_keys(const CaseConfig& before, const
 void truncate_series_after(const std::string& csv_path, long step);
 
 // (step, t) of the field snapshots fields/NNNNNNNN.h5 at or before `step`, oldest first.
-std::vector<std::pair<long, double>> field_history_until(const std::string& run_dir, long step);
+std::vector<Snapshot> field_history_until(const std::string& run_dir, long step);
 
 }  // namespace eulerfsi

@@ -285,7 +285,7 @@ class Simulation {
     }
     out.push_back({"p", flow_.state().p});
     if (!solids_.empty()) out.push_back({"psi", total_psi()});
-    fields_.write(step_, t_, out, true);
+    fields_.write(step_, t_, out, true, flow_.frame_offset());
   }
 
   // Non-finite values, a CFL number the step cannot keep below 1, or an adaptive step collapsing

@@ -40,7 +40,8 @@ void write_hdf5_field(long file_id, const Grid& g, const std::string& name, cons
   if (status < 0) throw std::runtime_error("writing dataset '" + name + "' failed (disk full?)");
 }
 
-void FieldWriter::write(long step, double t, const std::vector<NamedField>& fields, bool velocity_vector) {
+void FieldWriter::write(long step, double t, const std::vector<NamedField>& fields, bool velocity_vector,
+                        double x_offset) {
   int rank = 0;
   MPI_Comm_rank(comm_, &rank);
   char stem[32];
@@ -75,12 +76,15 @@ void FieldWriter::write(long step, double t, const std::vector<NamedField>& fiel
   hid_t attr = H5Acreate2(file, "time", H5T_NATIVE_DOUBLE, aspace, H5P_DEFAULT, H5P_DEFAULT);
   H5Awrite(attr, H5T_NATIVE_DOUBLE, &t);
   H5Aclose(attr);
+  attr = H5Acreate2(file, "frame_x", H5T_NATIVE_DOUBLE, aspace, H5P_DEFAULT, H5P_DEFAULT);
+  H5Awrite(attr, H5T_NATIVE_DOUBLE, &x_offset);
+  H5Aclose(attr);
   H5Sclose(aspace);
   if (H5Fclose(file) < 0) throw std::runtime_error("closing '" + tmp_path + "' failed (disk full?)");
   MPI_Barrier(comm_);
   if (rank == 0) fs::rename(tmp_path, final_path);
   vector_ = velocity_vector;
-  history_.emplace_back(step, t);
+  history_.push_back({step, t, x_offset});
   if (rank == 0) write_xdmf();
   MPI_Barrier(comm_);
 }
@@ -96,7 +100,7 @@ void FieldWriter::write_xdmf() const {
     std::snprintf(cells, sizeof(cells), "%d %d %d", g.n[2], g.n[1], g.n[0]);
     x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
       << "  <Grid Name=\"eulerfsi\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-    for (const auto& [step, t] : history_) {
+    for (const auto& [step, t, x_offset] : history_) {
       char stem[32];
       std::snprintf(stem, sizeof(stem), "%08ld", step);
       x << "   <Grid Name=\"step" << stem << "\" GridType=\"Uniform\">\n"
@@ -104,7 +108,7 @@ void FieldWriter::write_xdmf() const {
         << "    <Topology TopologyType=\"3DCoRectMesh\" Dimensions=\"" << dims << "\"/>\n"
         << "    <Geometry GeometryType=\"ORIGIN_DXDYDZ\">\n"
         << "     <DataItem Dimensions=\"3\" Format=\"XML\">" << g.domain_lo(2) << " " << g.domain_lo(1) << " "
-        << g.domain_lo(0) << "</DataItem>\n"
+        << g.domain_lo(0) + x_offset << "</DataItem>\n"
         << "     <DataItem Dimensions=\"3\" Format=\"XML\">" << g.h[2] << " " << g.h[1] << " " << g.h[0]
         << "</DataItem>\n    </Geometry>\n";
       for (const auto& name : names_) {

@@ -12,6 +12,13 @@
 
 namespace eulerfsi {
 
+// One snapshot in the index: its step, time and the grid's x-offset in the laboratory (moving frame).
+struct Snapshot {
+  long step = 0;
+  double t = 0.0;
+  double x_offset = 0.0;
+};
+
 struct NamedField {
   std::string name;
   Field3 data;      // cell-centred, ghosts ignored
@@ -21,16 +28,18 @@ class FieldWriter {
  public:
   FieldWriter(const Grid& grid, MPI_Comm comm, std::string run_dir);
   // Writes fields/NNNNNNNN.h5 (atomically: temporary name, then rename) and refreshes fields.xdmf.
-  void write(long step, double t, const std::vector<NamedField>& fields, bool velocity_vector);
+  // x_offset: where the grid's origin is in the laboratory (a moving frame); the XDMF places the
+  // snapshot there, so ParaView shows laboratory coordinates.
+  void write(long step, double t, const std::vector<NamedField>& fields, bool velocity_vector, double x_offset = 0.0);
   // Re-reads the index of an earlier run (restart) so the time series continues.
-  void set_history(std::vector<std::pair<long, double>> history) { history_ = std::move(history); }
+  void set_history(std::vector<Snapshot> history) { history_ = std::move(history); }
 
  private:
   void write_xdmf() const;
   Grid grid_;
   MPI_Comm comm_;
   std::string dir_;
-  std::vector<std::pair<long, double>> history_;  // (step, t) of every snapshot
+  std::vector<Snapshot> history_;
   std::vector<std::string> names_;
   bool vector_ = false;
 };

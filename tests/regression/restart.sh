@@ -29,6 +29,13 @@ for sig in TERM KILL; do
   sleep 0.3
   kill -s "$sig" "$pid" 2>/dev/null || true
   wait "$pid" || true
+  # SIGKILL cannot be forwarded: mpiexec dies and leaves its ranks running for a moment, and an
+  # orphan still writing a checkpoint would race the continued run. Kill the whole job, as a
+  # scheduler would, and wait until it is gone.
+  if [ "$sig" = KILL ]; then
+    pkill -KILL -f -- "--out $dir --set" 2>/dev/null || true
+    for _ in $(seq 1 200); do pgrep -f -- "--out $dir --set" > /dev/null || break; sleep 0.05; done
+  fi
   test -f "$dir/checkpoint.h5" || { echo "error: no checkpoint survived SIG$sig"; exit 1; }
   run --out "$dir" --restart --set output.checkpoint_every=5
   /usr/bin/python3 "$here/compare_runs.py" --exact "$work/full" "$dir"
