@@ -22,9 +22,12 @@ namespace eulerfsi::kernels {
 inline void mark_solid_tensor(const Field3& known, const Field3& psi, const Tensor6& b, double psi_solid,
                               const Box& box) {
   for_each_cell("eulerfsi::solid::b_mark", box, KOKKOS_LAMBDA(int i, int j, int k) {
-    const bool spd = positive_definite(b.c[XX](i, j, k), b.c[YY](i, j, k), b.c[ZZ](i, j, k), b.c[XY](i, j, k),
-                                       b.c[XZ](i, j, k), b.c[YZ](i, j, k));
-    known(i, j, k) = (psi(i, j, k) >= psi_solid && spd) ? 1.0 : 0.0;
+    // most cells are fluid: B is read only inside the solid
+    known(i, j, k) = (psi(i, j, k) >= psi_solid &&
+                      positive_definite(b.c[XX](i, j, k), b.c[YY](i, j, k), b.c[ZZ](i, j, k), b.c[XY](i, j, k),
+                                        b.c[XZ](i, j, k), b.c[YZ](i, j, k)))
+                         ? 1.0
+                         : 0.0;
   });
 }
 
@@ -51,12 +54,65 @@ inline void extend_tensor_sweep(const Tensor6& b, const Field3& known, int sweep
   });
 }
 
-// Beyond the band: B = I.
+// Beyond the band: B = I (written only where it is not I already: far from the solid B stays I
+// from one substep to the next, and a read costs less than a write).
 inline void reset_unknown_tensor(const Tensor6& b, const Field3& known, const Box& box) {
   for_each_cell("eulerfsi::solid::b_reset_far", box, KOKKOS_LAMBDA(int i, int j, int k) {
-    if (known(i, j, k) == 0.0)
+    if (known(i, j, k) != 0.0) return;
+    bool identity = true;
+    for (int c = 0; c < kTensorComponents; ++c) identity = identity && b.c[c](i, j, k) == (c < 3 ? 1.0 : 0.0);
+    if (!identity)
       for (int c = 0; c < kTensorComponents; ++c) b.c[c](i, j, k) = c < 3 ? 1.0 : 0.0;
   });
+}
+
+// The whole extension on `box` from valid ghosts of psi and B (band <= kGhost): the mark covers
+// the ghosts too and sweep s runs on box grown by band - s cells, so the cells a later sweep reads
+// across a rank boundary or a wall are computed here from the same inputs as on their owner (or
+// as their mirror image), and no exchange is needed between sweeps.
+// Sweep s can only reach cells within s face steps of a known one, so the sweeps run on the
+// bounding box of the known cells grown by s (the particle, not the whole domain).
+// Returns false when there is no known cell in `box`.
+inline bool known_bounding_box(const Field3& known, const Box& box, Box& out) {
+  int lo[3], hi[3];
+  for (int d = 0; d < 3; ++d) {
+    int neg_lo = -(1 << 30), h = -(1 << 30);
+    reduce_cells("eulerfsi::solid::b_known_lo", box, KOKKOS_LAMBDA(int i, int j, int k, int& m) {
+      const int c = d == 0 ? i : d == 1 ? j : k;
+      if (known(i, j, k) != 0.0 && -c > m) m = -c;
+    }, Kokkos::Max<int>(neg_lo));
+    reduce_cells("eulerfsi::solid::b_known_hi", box, KOKKOS_LAMBDA(int i, int j, int k, int& m) {
+      const int c = d == 0 ? i : d == 1 ? j : k;
+      if (known(i, j, k) != 0.0 && c > m) m = c;
+    }, Kokkos::Max<int>(h));
+    if (h < box.lo[d]) return false;  // the reducers' identity: no known cell
+    lo[d] = -neg_lo;
+    hi[d] = h + 1;
+  }
+  out = Box{{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}};
+  return true;
+}
+
+inline void extend_tensor(const Tensor6& b, const Field3& known, const Field3& psi, double psi_solid, int band,
+                          const Box& box) {
+  auto grown = [](const Box& x, int g) {
+    return Box{{x.lo[0] - g, x.lo[1] - g, x.lo[2] - g}, {x.hi[0] + g, x.hi[1] + g, x.hi[2] + g}};
+  };
+  mark_solid_tensor(known, psi, b, psi_solid, grown(box, band));
+  Box solid;
+  const bool any = known_bounding_box(known, grown(box, band), solid);
+  for (int sweep = 1; any && sweep <= band; ++sweep) {
+    const Box reach = grown(solid, sweep), limit = grown(box, band - sweep);
+    Box x;
+    bool empty = false;
+    for (int d = 0; d < 3; ++d) {
+      x.lo[d] = reach.lo[d] > limit.lo[d] ? reach.lo[d] : limit.lo[d];
+      x.hi[d] = reach.hi[d] < limit.hi[d] ? reach.hi[d] : limit.hi[d];
+      empty = empty || x.lo[d] >= x.hi[d];
+    }
+    if (!empty) extend_tensor_sweep(b, known, sweep, x);
+  }
+  reset_unknown_tensor(b, known, box);
 }
 
 }  // namespace eulerfsi::kernels

@@ -136,8 +136,8 @@ void SolidPhase::advance_substep(const kernels::Velocity& vel, double dt, int su
     std::swap(body.psi_rhs, body.psi_rhs_old);
     std::swap(body.b_rhs, body.b_rhs_old);
     clip_conserving(body.psi);
-    extend_tensor(body);
     bc_->fill_scalar(body.psi);
+    extend_tensor(body);
     if (substep == 2 && body.cfg.sharpening > 0.0) sharpen(body);
     for (int c = 0; c < kernels::kTensorComponents; ++c) bc_->fill_scalar(body.b.c[c]);
   }
@@ -146,15 +146,9 @@ void SolidPhase::advance_substep(const kernels::Velocity& vel, double dt, int su
 // B outside the solid: the solid's B extended over a band of kExtensionBand cells, I beyond;
 // scratch: psi_rhs, which holds nothing the next substep needs.
 void SolidPhase::extend_tensor(SolidBody& body) const {
-  const Box box = grid_.interior();
-  const Field3 known = body.psi_rhs;
-  kernels::mark_solid_tensor(known, body.psi, body.b, kPsiSolid, box);
-  for (int sweep = 1; sweep <= kExtensionBand; ++sweep) {
-    bc_->fill_scalar(known);
-    for (int c = 0; c < kernels::kTensorComponents; ++c) bc_->fill_scalar(body.b.c[c]);
-    kernels::extend_tensor_sweep(body.b, known, sweep, box);
-  }
-  kernels::reset_unknown_tensor(body.b, known, box);
+  // psi's ghosts are fresh; B's are filled once (the sweeps then need no exchange)
+  for (int c = 0; c < kernels::kTensorComponents; ++c) bc_->fill_scalar(body.b.c[c]);
+  kernels::extend_tensor(body.b, body.psi_rhs, body.psi, kPsiSolid, kExtensionBand, grid_.interior());
 }
 
 // Bounded and conservative: clip psi to [0, 1], then give the clipped volume back to the
