@@ -22,11 +22,10 @@ RESOLUTIONS = {
     "paper": dict(cells=(720, 240, 240), every=100, fields_every=50000, checkpoint_every=5000,
                   note="paper resolution: 240 cells across the pipe, 48 per particle diameter"),
     # 12 cells per particle diameter (60 across the pipe): the finest a 2-core desk can take far.
-    # What it costs (measured, docs/STATUS.md): the WENO-advected edge of the particle widens as
-    # it travels (at 8 cells per diameter only half the volume has psi > 0.5 after 4 D/U_b), the
-    # psi-moment deformation is inflated by the halo and r/R(t) shows oscillations of a few % of
-    # R that the paper's 48-cell runs do not; treat t_cen, t_rev and T_osc from these runs as
-    # qualitative until the edge is kept sharp (try solid.sharpening, at a cost in shape).
+    # What it costs (measured, docs/STATUS.md): with the grid following the particle its
+    # translation no longer smears it, but its rotation and tank-treading still do (a sphere in
+    # rigid rotation at 8 cells per diameter reads D = 0.02 after one radian), so D drifts upward
+    # over long runs; treat t_cen, t_rev and T_osc from these runs as qualitative.
     "desk": dict(cells=(180, 60, 60), every=20, fields_every=5000, checkpoint_every=1000,
                  note="desk resolution: 60 cells across the pipe, 12 per particle diameter (qualitative: see docs/STATUS.md)"),
 }
