@@ -6,6 +6,7 @@
 #include "app/simulation.hpp"
 #include "config/case_config.hpp"
 #include "parallel/comm.hpp"
+#include "solid/particle_diagnostics.hpp"
 #include "solid/solid_phase.hpp"
 #include "solver/flow_solver.hpp"
 
@@ -22,6 +23,22 @@ inline CaseConfig small_case(Geometry geo, int nx, int ny, int nz, double lx, do
   cfg.flow.initial = init;
   return cfg;
 }
+
+// A case with bodies, set up as a run starts (initial flow, shapes with B = I, bodies at rest
+// stopped, one projection).
+struct CoupledCase {
+  Comm comm;
+  Grid grid;
+  FlowSolver flow;
+  SolidPhase solids;
+  ParticleTracker tracker;
+  explicit CoupledCase(const CaseConfig& cfg)
+      : grid(make_grid(cfg, comm)), flow(cfg, grid, comm), solids(cfg, grid, flow.boundaries(), comm),
+        tracker(cfg, grid, comm) {
+    set_initial_state(flow, solids);
+  }
+  ParticleState particle() { return tracker.measure(solids, flow.state())[0]; }
+};
 
 // Advances the flow (and the bodies, if given) to t_end with the stable step; calls `each` after
 // every step.

@@ -31,12 +31,10 @@ LayerError layer_error(int ny) {
   layer.We = kWe;
   layer.viscosity_ratio = 1.0;
   cfg.solids.push_back(layer);
-  const Comm comm;
-  const Grid grid = make_grid(cfg, comm);
-  FlowSolver flow(cfg, grid, comm);
-  SolidPhase solids(cfg, grid, flow.boundaries(), comm);
-  set_initial_state(flow, solids);
-  test::run_flow(flow, kTEnd, {}, &solids);
+  test::CoupledCase run(cfg);
+  const Grid& grid = run.grid;
+  const FlowSolver& flow = run.flow;
+  test::run_flow(run.flow, kTEnd, {}, &run.solids);
   const double t = kTEnd;
   const exact::OscillatingLayer sol(kThickness, 1.0, kV, kOmega, 1.0, 1.0 / kRe, 1.0 / kRe, 1.0 / kWe);
   auto u = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), flow.state().u());
@@ -54,7 +52,7 @@ LayerError layer_error(int ny) {
       slope = std::max(slope, std::fabs(sol.velocity(Y + dY, tt) - sol.velocity(Y - dY, tt)) / (2 * dY));
     }
   e.bound = slope * grid.h[1];
-  e.max_error = comm.max(e.max_error);
+  e.max_error = run.comm.max(e.max_error);
   return e;
 }
 

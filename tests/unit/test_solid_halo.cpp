@@ -54,23 +54,19 @@ TEST(SolidHalo, BOutsideTheSolidIsNeverStifferThanTheSolid) {
   sphere.We = 4.0;  // soft: large B - I within a few time units
   sphere.initial_velocity = InitialSolidVelocity::Rest;
   cfg.solids.push_back(sphere);
-  const Comm comm;
-  const Grid grid = make_grid(cfg, comm);
-  FlowSolver flow(cfg, grid, comm);
-  SolidPhase solids(cfg, grid, flow.boundaries(), comm);
-  set_initial_state(flow, solids);
+  test::CoupledCase run(cfg);
   HaloCheck worst;
   double worst_ratio = 0.0;
   long steps = 0;
-  test::run_flow(flow, 0.5, [&](double) {
-    const HaloCheck h = check_halo(solids.bodies()[0], grid.interior());
+  test::run_flow(run.flow, 0.5, [&](double) {
+    const HaloCheck h = check_halo(run.solids.bodies()[0], run.grid.interior());
     worst.not_spd += h.not_spd;
     worst.solid_max = std::max(worst.solid_max, h.solid_max);
     worst.halo_max = std::max(worst.halo_max, h.halo_max);
     if (h.solid_max > 0.0) worst_ratio = std::max(worst_ratio, h.halo_max / h.solid_max);
     EXPECT_LE(h.halo_max, h.solid_max * (1.0 + 1e-12));
     ++steps;
-  }, &solids);
+  }, &run.solids);
   std::printf("%ld steps to t = 0.5: max |B - I| in the solid %.3f, outside %.3f (worst ratio %.3f), non-SPD cells %ld\n",
               steps, worst.solid_max, worst.halo_max, worst_ratio, worst.not_spd);
   EXPECT_EQ(worst.not_spd, 0);
