@@ -112,9 +112,10 @@ inline void sharpening_rhs(const Field3& rhs, const Field3& psi, const Field3& n
   const double ix = inv_h[0], iy = inv_h[1], iz = inv_h[2];
   for_each_cell("eulerfsi::solid::sharpen_rhs", box, KOKKOS_LAMBDA(int i, int j, int k) {
     const double ih[3] = {ix, iy, iz};
-    auto nzero = [&](int a, int b, int c) { return normal_is_zero(nx, ny, nz, a, b, c); };
-    if (nzero(i, j, k) && nzero(i - 1, j, k) && nzero(i + 1, j, k) && nzero(i, j - 1, k) && nzero(i, j + 1, k) &&
-        nzero(i, j, k - 1) && nzero(i, j, k + 1)) {
+    if (normal_is_zero(nx, ny, nz, i, j, k) && normal_is_zero(nx, ny, nz, i - 1, j, k) &&
+        normal_is_zero(nx, ny, nz, i + 1, j, k) && normal_is_zero(nx, ny, nz, i, j - 1, k) &&
+        normal_is_zero(nx, ny, nz, i, j + 1, k) && normal_is_zero(nx, ny, nz, i, j, k - 1) &&
+        normal_is_zero(nx, ny, nz, i, j, k + 1)) {
       rhs(i, j, k) = 0.0;
       return;
     }
