@@ -18,7 +18,7 @@ std::vector<std::string> differing_physical_keys(const CaseConfig& before, const
 // A missing file is created with just `header` later by the writer: nothing to do here.
 void truncate_series_after(const std::string& csv_path, long step);
 
-// (step, t) of the field snapshots fields/NNNNNNNN.h5 at or before `step`, oldest first.
+// (step, t, frame offset) of the field snapshots fields/NNNNNNNN.h5 at or before `step`, oldest first.
 std::vector<Snapshot> field_history_until(const std::string& run_dir, long step);
 
 }  // namespace eulerfsi

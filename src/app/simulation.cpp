@@ -41,7 +41,7 @@ Grid make_grid(const CaseConfig& cfg, const Comm& comm) {
 
 namespace {
 
-// frame_u, frame_x: the grid's x-velocity and displacement (flow.frame_velocity); fields are on the grid
+// frame_u, frame_x: the grid's x-velocity and displacement in the laboratory (flow.frame_velocity)
 const std::vector<std::string> kFlowColumns = {"step", "t",       "dt",           "cfl",     "bulk_u",
                                                "dpdx", "max_div", "kinetic_energy", "frame_u", "frame_x"};
 // An adaptive step that can no longer keep the CFL number below this has blown up.
