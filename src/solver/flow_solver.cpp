@@ -156,7 +156,6 @@ FlowDiagnostics FlowSolver::diagnostics(double dt, double wave_speed) const {
   FlowDiagnostics d;
   d.cfl = dt * comm_.max(kernels::max_signal_rate(u[0], u[1], u[2], grid_.h, wave_speed, box));
   d.bulk_u = bulk_velocity() + frame_u_;
-  d.frame_u = frame_u_;
   d.dpdx = dpdx_;
   d.max_div = comm_.max(kernels::max_abs_divergence(u[0], u[1], u[2], grid_.h, box));
   d.kinetic_energy = comm_.sum(kernels::kinetic_energy_sum(u[0], u[1], u[2], box, frame_u_)) / double(grid_.global_cells());

@@ -19,7 +19,6 @@ struct FlowDiagnostics {
   double dpdx = 0.0;
   double max_div = 0.0;
   double kinetic_energy = 0.0;  // volume average of |u|^2 / 2 (laboratory frame)
-  double frame_u = 0.0;         // the grid's x-velocity
   bool finite = true;
 };
 
