@@ -13,13 +13,6 @@
 
 namespace eulerfsi::kernels {
 
-// Cell-centre coordinates from storage indices: x_d(s) = x0[d] + s h[d], x0[d] = grid.centre(d, 0).
-struct CellCentres {
-  double x0[3];
-  double h[3];
-  KOKKOS_INLINE_FUNCTION double operator()(int d, int s) const { return x0[d] + s * h[d]; }
-};
-
 // First moments, all multiplied by dV:
 //   volume = sum psi, y = sum psi y, z = sum psi z, cos/sin = sum psi cos|sin(2 pi x / Lx),
 //   u, v, w = sum psi u_c (face velocities averaged to the centre).

@@ -16,6 +16,13 @@ KOKKOS_INLINE_FUNCTION int tensor_index(int a, int b) {
   return lo == 0 ? (hi == 1 ? XY : XZ) : YZ;
 }
 
+// Cell-centre coordinates from storage indices: x_d(s) = x0[d] + s h[d], x0[d] = grid.centre(d, 0).
+struct CellCentres {
+  double x0[3];
+  double h[3];
+  KOKKOS_INLINE_FUNCTION double operator()(int d, int s) const { return x0[d] + s * h[d]; }
+};
+
 struct Tensor6 {
   Field3 c[kTensorComponents];
 };

@@ -154,13 +154,7 @@ class Simulation {
   std::vector<std::pair<std::string, Field3>> state_fields() {
     auto& s = flow_.state();
     std::vector<std::pair<std::string, Field3>> f = {{"u", s.u()}, {"v", s.v()}, {"w", s.w()}, {"p", s.p}};
-    static const char* comp[6] = {"xx", "yy", "zz", "xy", "xz", "yz"};
-    for (size_t n = 0; n < solids_.bodies().size(); ++n) {
-      auto& body = solids_.bodies()[n];
-      const std::string tag = "solid" + std::to_string(n);
-      f.emplace_back(tag + "_psi", body.psi);
-      for (int c = 0; c < 6; ++c) f.emplace_back(tag + "_B" + comp[c], body.b.c[c]);
-    }
+    for (auto& field : solids_.checkpoint_fields()) f.push_back(field);
     return f;
   }
 
@@ -175,6 +169,7 @@ class Simulation {
     meta.scalars["frame.offset"] = flow_.frame_offset();
     const auto xs = tracker_.unwrapped_x();
     for (size_t n = 0; n < xs.size(); ++n) meta.scalars["solid" + std::to_string(n) + ".x_unwrapped"] = xs[n];
+    for (const auto& [key, v] : solids_.checkpoint_scalars()) meta.scalars[key] = v;
     write_checkpoint(checkpoint_path(), grid_, comm_.comm, meta, state_fields());
   }
 
@@ -204,10 +199,7 @@ class Simulation {
     // ghosts are not stored: refill them exactly as a step leaves them
     flow_.boundaries().fill_velocity(flow_.state().vel, t_);
     flow_.boundaries().fill_scalar(flow_.state().p);
-    for (auto& body : solids_.bodies()) {
-      flow_.boundaries().fill_scalar(body.psi);
-      for (int c = 0; c < 6; ++c) flow_.boundaries().fill_scalar(body.b.c[c]);
-    }
+    solids_.restore({meta.scalars.begin(), meta.scalars.end()});
     // the series continue from the checkpoint's step: later rows belong to the lost future
     if (comm_.root()) {
       for (const char* name : {"/flow.csv", "/particle.csv", "/shapes/index.csv"}) truncate_series_after(dir() + name, step_);

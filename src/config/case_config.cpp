@@ -32,7 +32,7 @@ const std::vector<Section>& schema() {
       {"flow", {"Re", "bulk_velocity", "wall_velocity", "wall_frequency", "initial", "penalization_eta", "frame_velocity"}},
       {"time", {"cfl", "dt", "t_end", "max_steps"}},
       {"output", {"dir", "every", "fields_every", "profiles_every", "checkpoint_every", "shape_times"}},
-      {"solid", {"shape", "diameter", "center", "thickness", "We", "viscosity_ratio", "initial_velocity", "sharpening"}},
+      {"solid", {"shape", "diameter", "center", "thickness", "We", "viscosity_ratio", "initial_velocity", "sharpening", "model"}},
   };
   return s;
 }
@@ -55,6 +55,9 @@ const std::vector<std::pair<const char*, SolidShape>> kShapes{{"sphere", SolidSh
                                                               {"layer", SolidShape::Layer}};
 const std::vector<std::pair<const char*, InitialSolidVelocity>> kSolidVelocities{
     {"rest", InitialSolidVelocity::Rest}, {"fluid", InitialSolidVelocity::Fluid}};
+
+const std::vector<std::pair<const char*, SolidModelKind>> kSolidModels{
+    {"paper", SolidModelKind::Paper}, {"reference-map", SolidModelKind::ReferenceMap}};
 
 template <class E>
 const char* spelling(const std::vector<std::pair<const char*, E>>& table, E e) {
@@ -562,6 +565,12 @@ void read_solids(const Reader& r, const toml::table& root, const DomainConfig& d
     r.require(c.sharpening >= 0 && c.sharpening <= 0.3, t, s, "sharpening",
               "must be in [0, 0.3] (pseudo-time step in units of h; 0 = off; above h/3 is unstable)");
     r.get(t, s, "initial_velocity", c.initial_velocity, kSolidVelocities);
+    r.get(t, s, "model", c.model, kSolidModels);
+    // sharpening is a cure for the paper model's smeared psi; the reference map's psi never smears
+    if (c.model == SolidModelKind::ReferenceMap && c.sharpening > 0)
+      r.fail(s + ".sharpening", s + ".sharpening = " + fmt_double(c.sharpening) +
+                                    ": sharpening applies to " + s + ".model = \"paper\" only; the reference map "
+                                    "derives a sharp psi from xi (set it to 0 or remove it)");
 
     if (c.shape == SolidShape::Layer) {
       if (d.geometry != Geometry::Channel && d.geometry != Geometry::Couette)
@@ -652,6 +661,7 @@ const char* to_string(Geometry g) { return spelling(kGeometries, g); }
 const char* to_string(InitialFlow f) { return spelling(kInitialFlows, f); }
 const char* to_string(SolidShape s) { return spelling(kShapes, s); }
 const char* to_string(InitialSolidVelocity v) { return spelling(kSolidVelocities, v); }
+const char* to_string(SolidModelKind m) { return spelling(kSolidModels, m); }
 
 CaseConfig parse_case_string(const std::string& toml_text, const std::vector<std::string>& overrides,
                              const std::string& source_name) {
@@ -728,7 +738,8 @@ std::string to_toml(const CaseConfig& c) {
     os << "We = " << fmt_double(s.We) << "\n"
        << "viscosity_ratio = " << fmt_double(s.viscosity_ratio) << "\n"
        << "initial_velocity = " << toml_str(to_string(s.initial_velocity)) << "\n"
-       << "sharpening = " << fmt_double(s.sharpening) << "\n";
+       << "sharpening = " << fmt_double(s.sharpening) << "\n"
+       << "model = " << toml_str(to_string(s.model)) << "\n";
   }
   return os.str();
 }

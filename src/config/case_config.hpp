@@ -55,6 +55,10 @@ struct OutputConfig {
 
 enum class SolidShape { Sphere, Layer };
 enum class InitialSolidVelocity { Rest, Fluid };
+// How a body's shape and deformation are carried (src/solid/solid_model.hpp):
+//   Paper: psi and B advected with WENO5 (the paper's method; needs ~48 cells per diameter)
+//   ReferenceMap: the reference position xi advected; psi and B derived from it (Kamrin et al. 2012)
+enum class SolidModelKind { Paper, ReferenceMap };
 
 struct SolidConfig {
   SolidShape shape = SolidShape::Sphere;
@@ -65,6 +69,7 @@ struct SolidConfig {
   double viscosity_ratio = 1.0;  // mu_s / mu_f
   double sharpening = 0.0;       // interface sharpening pseudo-step per time step, in units of h (0: off)
   InitialSolidVelocity initial_velocity = InitialSolidVelocity::Fluid;
+  SolidModelKind model = SolidModelKind::Paper;
 };
 
 struct CaseConfig {
@@ -93,5 +98,6 @@ const char* to_string(Geometry g);
 const char* to_string(InitialFlow f);
 const char* to_string(SolidShape s);
 const char* to_string(InitialSolidVelocity v);
+const char* to_string(SolidModelKind m);
 
 }  // namespace eulerfsi

@@ -2,82 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
-#include <utility>
+#include <map>
 
-#include "core/compat.hpp"
 #include "core/launch.hpp"
 #include "kernels/elastic_force.hpp"
-#include "kernels/interface_sharpening.hpp"
-#include "kernels/solid_transport.hpp"
-#include "kernels/tensor_extension.hpp"
-#include "solver/flow_solver.hpp"
-#include "solver/rk3.hpp"
+#include "solid/paper_model.hpp"
 
 namespace eulerfsi {
 
-namespace {
-
-// The transport of B skips cells whose stencil holds no solid at all (psi below this).
-constexpr double kPsiReset = 1e-6;
-// B is the solid's own where psi >= 1/2 (the cell centre inside the interface); it is extended
-// from there over as many cells as the WENO5 stencil reaches, and is I beyond
-// (kernels/tensor_extension.hpp).
-constexpr double kPsiSolid = 0.5;
-constexpr int kExtensionBand = 3;
-// Interface sharpening (opt-in per solid): width eps = h/2 (psi from 0.12 to 0.88 over 2 cells);
-// the pseudo-time step (solid.sharpening, in units of h) must stay below h^2 / (6 eps) = h / 3.
-constexpr double kSharpenWidth = 0.5;
-// Sub-samples per direction for the initial cell volume fraction: error ~ 1/n^2 of a surface cell.
-constexpr int kSubsamples = 8;
-
-kernels::Tensor6 make_tensor(const Grid& g, const char* label) {
-  kernels::Tensor6 t;
-  for (int c = 0; c < kernels::kTensorComponents; ++c) t.c[c] = g.make_field(label);
-  return t;
-}
-
-void set_identity(const kernels::Tensor6& b) {
-  for (int c = 0; c < kernels::kTensorComponents; ++c) Kokkos::deep_copy(b.c[c], c < 3 ? 1.0 : 0.0);
-}
-
-// psi = fraction of kSubsamples^3 points of each cell inside the body (sphere: nearest periodic image).
-void fill_volume_fraction(const Field3& psi, const Grid& g, const SolidConfig& s) {
-  const double hx = g.h[0], hy = g.h[1], hz = g.h[2], lx = g.length[0];
-  // periods for the nearest image (0: a wall direction, no images)
-  const double ly = g.bc[1] == Boundary::Periodic ? g.length[1] : 0.0;
-  const double lz = g.bc[2] == Boundary::Periodic ? g.length[2] : 0.0;
-  const double y0 = g.domain_lo(1), z0 = g.domain_lo(2);
-  const int x_off = g.x_offset;
-  const bool sphere = s.shape == SolidShape::Sphere;
-  const double cx = s.center[0], cy = s.center[1], cz = s.center[2], r = 0.5 * s.diameter;
-  const double top = y0 + s.thickness;
-  const int n = kSubsamples;
-  for_each_cell("eulerfsi::solid::volume_fraction", g.all(), KOKKOS_LAMBDA(int i, int j, int k) {
-    int inside = 0;
-    for (int a = 0; a < n; ++a)
-      for (int b = 0; b < n; ++b)
-        for (int c = 0; c < n; ++c) {
-          const double x = (i - kGhost + x_off + (a + 0.5) / n) * hx;
-          const double y = y0 + (j - kGhost + (b + 0.5) / n) * hy;
-          const double z = z0 + (k - kGhost + (c + 0.5) / n) * hz;
-          if (sphere) {
-            double dx = x - cx, dy = y - cy, dz = z - cz;
-            dx -= lx * compat::floor(dx / lx + 0.5);  // nearest periodic image
-            if (ly > 0.0) dy -= ly * compat::floor(dy / ly + 0.5);
-            if (lz > 0.0) dz -= lz * compat::floor(dz / lz + 0.5);
-            inside += (dx * dx + dy * dy + dz * dz < r * r) ? 1 : 0;
-          } else {
-            inside += (y < top) ? 1 : 0;
-          }
-        }
-    psi(i, j, k) = double(inside) / double(n * n * n);
-  });
-}
-
-}  // namespace
-
 SolidPhase::SolidPhase(const CaseConfig& cfg, const Grid& grid, const BoundaryConditions& bc, const Comm& comm)
-    : cfg_(cfg), grid_(grid), bc_(&bc), comm_(comm) {
+    : cfg_(cfg), grid_(grid), comm_(comm) {
   for (const auto& s : cfg.solids) {
     SolidBody body;
     body.cfg = s;
@@ -86,21 +20,13 @@ SolidPhase::SolidPhase(const CaseConfig& cfg, const Grid& grid, const BoundaryCo
     body.psi = grid.make_field("psi");
     body.b = make_tensor(grid, "B");
     body.b_prev = make_tensor(grid, "B_prev");
-    body.psi_rhs_old = grid.make_field("psi_rhs_old");
-    body.b_rhs_old = make_tensor(grid, "B_rhs_old");
-    body.psi_rhs = grid.make_field("psi_rhs");
-    body.b_rhs = make_tensor(grid, "B_rhs");
+    body.model = make_solid_model(s, cfg, grid, bc, comm);
     bodies_.push_back(std::move(body));
   }
 }
 
 void SolidPhase::set_initial_condition() {
-  for (auto& body : bodies_) {
-    fill_volume_fraction(body.psi, grid_, body.cfg);
-    bc_->fill_scalar(body.psi);  // periodic images in y and z come from the ghost exchange
-    set_identity(body.b);
-    set_identity(body.b_prev);
-  }
+  for (auto& body : bodies_) body.model->set_initial_condition(body);
 }
 
 void SolidPhase::stop_bodies_at_rest(const kernels::Velocity& vel) const {
@@ -124,55 +50,7 @@ void SolidPhase::total_volume_fraction(const Field3& out) const {
 }
 
 void SolidPhase::advance_substep(const kernels::Velocity& vel, double dt, int substep) {
-  const double gamma = Rk3::gamma[substep], zeta = Rk3::zeta[substep];
-  const Box box = grid_.interior();
-  for (auto& body : bodies_) {
-    // d psi/dt = -div(u psi);  dB/dt = -div(u B) + L B + B L^T   (WENO5 fluxes, RK3)
-    kernels::scalar_advection_rhs(body.psi_rhs, body.psi, vel, grid_.h, box);
-    kernels::tensor_transport_rhs(body.b_rhs, body.b, vel, body.psi, kPsiReset, grid_.h, box);
-    for (int c = 0; c < kernels::kTensorComponents; ++c) Kokkos::deep_copy(body.b_prev.c[c], body.b.c[c]);
-    kernels::rk3_scalar_update(body.psi, body.psi_rhs, body.psi_rhs_old, dt, gamma, zeta, box);
-    kernels::rk3_tensor_update(body.b, body.b_rhs, body.b_rhs_old, dt, gamma, zeta, box);
-    std::swap(body.psi_rhs, body.psi_rhs_old);
-    std::swap(body.b_rhs, body.b_rhs_old);
-    clip_conserving(body.psi);
-    bc_->fill_scalar(body.psi);
-    extend_tensor(body);
-    if (substep == 2 && body.cfg.sharpening > 0.0) sharpen(body);
-    for (int c = 0; c < kernels::kTensorComponents; ++c) bc_->fill_scalar(body.b.c[c]);
-  }
-}
-
-// B outside the solid: the solid's B extended over a band of kExtensionBand cells, I beyond;
-// scratch: psi_rhs, which holds nothing the next substep needs.
-void SolidPhase::extend_tensor(SolidBody& body) const {
-  // psi's ghosts are fresh; B's are filled once (the sweeps then need no exchange)
-  for (int c = 0; c < kernels::kTensorComponents; ++c) bc_->fill_scalar(body.b.c[c]);
-  kernels::extend_tensor(body.b, body.psi_rhs, body.psi, kPsiSolid, kExtensionBand, grid_.interior());
-}
-
-// Bounded and conservative: clip psi to [0, 1], then give the clipped volume back to the
-// interface cells in proportion to psi (1 - psi).
-void SolidPhase::clip_conserving(const Field3& psi) const {
-  const Box box = grid_.interior();
-  const double removed = comm_.sum(kernels::clip_volume_fraction(psi, box));
-  const double weight = comm_.sum(kernels::interface_weight(psi, box));
-  if (removed != 0.0 && weight > 0.0)
-    kernels::add_to_interface(psi, compat::fmax(-1.0, compat::fmin(1.0, removed / weight)), box);
-}
-
-// One conservative sharpening step of psi (Olsson, Kreiss & Zahedi 2007); scratch: the rhs
-// buffers, which hold nothing the next substep needs.
-void SolidPhase::sharpen(SolidBody& body) {
-  const Box box = grid_.interior();
-  const double h = std::min(grid_.h[0], std::min(grid_.h[1], grid_.h[2]));
-  // scratch: B's rhs buffers (normals and the smoothed psi), free between substeps
-  const auto& n = body.b_rhs;
-  kernels::sharpening_step_rhs(body.psi_rhs, body.psi, n.c[3], n.c[0], n.c[1], n.c[2], kSharpenWidth * h, grid_.h,
-                               box);
-  kernels::rk3_scalar_update(body.psi, body.psi_rhs, body.psi_rhs, body.cfg.sharpening * h, 1.0, 0.0, box);
-  clip_conserving(body.psi);
-  bc_->fill_scalar(body.psi);
+  for (auto& body : bodies_) body.model->advance_substep(body, vel, dt, substep);
 }
 
 void SolidPhase::mixture_viscosity(const Field3& mu, double mu_fluid) const {
@@ -185,6 +63,44 @@ void SolidPhase::add_elastic_force(const kernels::Velocity& rhs) const {
     kernels::add_elastic_force(rhs, body.psi, body.b, body.b_prev, body.G, grid_.h, grid_.interior());
 }
 
+double SolidPhase::max_wave_speed() const {
+  double c = 0.0;
+  for (const auto& body : bodies_) c = std::max(c, std::sqrt(body.G));
+  return c;
+}
+
+std::vector<std::pair<std::string, Field3>> SolidPhase::checkpoint_fields() {
+  static const char* comp[6] = {"xx", "yy", "zz", "xy", "xz", "yz"};
+  std::vector<std::pair<std::string, Field3>> f;
+  for (size_t n = 0; n < bodies_.size(); ++n) {
+    auto& body = bodies_[n];
+    const std::string tag = "solid" + std::to_string(n);
+    f.emplace_back(tag + "_psi", body.psi);
+    for (int c = 0; c < 6; ++c) f.emplace_back(tag + "_B" + comp[c], body.b.c[c]);
+    for (auto& [name, field] : body.model->checkpoint_fields()) f.emplace_back(tag + "_" + name, field);
+  }
+  return f;
+}
+
+std::vector<std::pair<std::string, double>> SolidPhase::checkpoint_scalars() const {
+  std::vector<std::pair<std::string, double>> out;
+  for (size_t n = 0; n < bodies_.size(); ++n)
+    for (const auto& [name, v] : bodies_[n].model->checkpoint_scalars())
+      out.emplace_back("solid" + std::to_string(n) + "." + name, v);
+  return out;
+}
+
+void SolidPhase::restore(const std::vector<std::pair<std::string, double>>& scalars) {
+  for (size_t n = 0; n < bodies_.size(); ++n) {
+    const std::string tag = "solid" + std::to_string(n) + ".";
+    std::map<std::string, double> mine;
+    for (const auto& [key, v] : scalars)
+      if (key.rfind(tag, 0) == 0) mine[key.substr(tag.size())] = v;
+    bodies_[n].model->restore_scalars(mine);
+    bodies_[n].model->fill_ghosts(bodies_[n]);
+  }
+}
+
 void set_initial_state(FlowSolver& flow, SolidPhase& solids) {
   flow.set_initial_condition();
   solids.set_initial_condition();
@@ -192,12 +108,6 @@ void set_initial_state(FlowSolver& flow, SolidPhase& solids) {
     solids.stop_bodies_at_rest(flow.state().vel);
     flow.make_solenoidal();
   }
-}
-
-double SolidPhase::max_wave_speed() const {
-  double c = 0.0;
-  for (const auto& body : bodies_) c = std::max(c, std::sqrt(body.G));
-  return c;
 }
 
 }  // namespace eulerfsi

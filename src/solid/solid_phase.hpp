@@ -1,62 +1,58 @@
 #pragma once
-// The soft bodies of a case: each carries psi and B; together they give the mixture viscosity
-// and the elastic stress div[ sum_s psi_s G_s (B_s - I) ] that the momentum equation feels.
+// The soft bodies of a case: each carries psi and B, moved by its own model (solid_model.hpp);
+// together they give the mixture viscosity and the elastic stress div[ sum_s psi_s G_s (B_s - I) ]
+// that the momentum equation feels (the SolidCoupling the flow solver sees).
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "config/case_config.hpp"
 #include "grid/grid.hpp"
 #include "kernels/momentum.hpp"
-#include "kernels/solid_fields.hpp"
 #include "parallel/comm.hpp"
+#include "solid/solid_body.hpp"
+#include "solid/solid_model.hpp"
 #include "solver/boundary_conditions.hpp"
+#include "solver/flow_solver.hpp"
+#include "solver/solid_coupling.hpp"
 
 namespace eulerfsi {
 
-struct SolidBody {
-  SolidConfig cfg;
-  double G = 1.0;      // shear modulus 1/We
-  double mu_s = 0.0;   // solid viscosity (viscosity_ratio / Re)
-  Field3 psi;          // volume fraction
-  kernels::Tensor6 b;        // B at the current substep
-  kernels::Tensor6 b_prev;   // B before the latest update (Crank-Nicolson average with b)
-  Field3 psi_rhs_old;        // RK3 memory (zeta term)
-  kernels::Tensor6 b_rhs_old;
-  Field3 psi_rhs;            // scratch for the current substep
-  kernels::Tensor6 b_rhs;
-};
-
-class SolidPhase {
+class SolidPhase final : public SolidCoupling {
  public:
   SolidPhase(const CaseConfig& cfg, const Grid& grid, const BoundaryConditions& bc, const Comm& comm);
   bool empty() const { return bodies_.empty(); }
   std::vector<SolidBody>& bodies() { return bodies_; }
   const std::vector<SolidBody>& bodies() const { return bodies_; }
 
-  // psi from the initial shape (cell volume fraction by sub-sampling), B = I.
+  // Each body's initial shape with B = I.
   void set_initial_condition();
   // Initial velocity "rest": u_face *= 1 - psi_face for the bodies that start at rest.
   void stop_bodies_at_rest(const kernels::Velocity& vel) const;
   // Sum of every body's psi (for output), into `out`.
   void total_volume_fraction(const Field3& out) const;
-  // (i) of the substep: psi and B of every body advanced by one RK3 substep.
-  void advance_substep(const kernels::Velocity& vel, double dt, int substep);
-  // mu = mu_f + sum_s psi_s (mu_s - mu_f), ghosts included.
-  void mixture_viscosity(const Field3& mu, double mu_fluid) const;
-  // rhs_D += d/dx_E [ psi G ((B^k + B^(k-1))/2 - I)_DE ] for every body.
-  void add_elastic_force(const kernels::Velocity& rhs) const;
-  // Fastest elastic shear-wave speed sqrt(G) among the bodies (0 without bodies).
-  double max_wave_speed() const;
+
+  // SolidCoupling: what the momentum equation needs
+  void advance_substep(const kernels::Velocity& vel, double dt, int substep) override;
+  void mixture_viscosity(const Field3& mu, double mu_fluid) const override;
+  void add_elastic_force(const kernels::Velocity& rhs) const override;
+  double max_wave_speed() const override;
+
+  // Every field a step starts from, "solid<n>_<name>": psi, B and whatever the model adds.
+  std::vector<std::pair<std::string, Field3>> checkpoint_fields();
+  // Model scalars, "solid<n>.<name>", and their restoration after a checkpoint was read.
+  std::vector<std::pair<std::string, double>> checkpoint_scalars() const;
+  void restore(const std::vector<std::pair<std::string, double>>& scalars);
 
  private:
-  void sharpen(SolidBody& body);
-  void extend_tensor(SolidBody& body) const;
-  void clip_conserving(const Field3& psi) const;
-
   CaseConfig cfg_;
   Grid grid_;
-  const BoundaryConditions* bc_;
   Comm comm_;
   std::vector<SolidBody> bodies_;
 };
+
+// The state a run starts from: the flow's initial condition, the bodies' shapes with B = I, zero
+// velocity inside bodies that start at rest, then one projection.
+void set_initial_state(FlowSolver& flow, SolidPhase& solids);
 
 }  // namespace eulerfsi

@@ -8,7 +8,6 @@
 #include "kernels/momentum.hpp"
 #include "kernels/projection.hpp"
 #include "kernels/time_update.hpp"
-#include "solid/solid_phase.hpp"
 #include "solver/initial_conditions.hpp"
 
 namespace eulerfsi {
@@ -82,7 +81,7 @@ double FlowSolver::stable_dt(double extra_wave_speed) const {
   return std::min(dt_conv, dt_visc);
 }
 
-void FlowSolver::advance(double t, double dt, SolidPhase* solids) {
+void FlowSolver::advance(double t, double dt, SolidCoupling* solids) {
   const Box box = grid_.interior();
   auto& vel = state_.vel;
   double dpdx_step = 0.0;

@@ -10,6 +10,7 @@
 #include "solver/boundary_conditions.hpp"
 #include "solver/flow_state.hpp"
 #include "solver/rk3.hpp"
+#include "solver/solid_coupling.hpp"
 
 namespace eulerfsi {
 
@@ -22,13 +23,6 @@ struct FlowDiagnostics {
   bool finite = true;
 };
 
-class SolidPhase;  // the soft particles (solid/solid_phase.hpp); may be absent
-
-class FlowSolver;
-// The state a run starts from: the flow's initial condition, the bodies' shapes with B = I, zero
-// velocity inside bodies that start at rest, then one projection (defined in solid_phase.cpp).
-void set_initial_state(FlowSolver& flow, SolidPhase& solids);
-
 class FlowSolver {
  public:
   FlowSolver(const CaseConfig& cfg, const Grid& grid, const Comm& comm);
@@ -40,7 +34,7 @@ class FlowSolver {
   // Largest stable step: the CFL limit on (|u| + sqrt(G)) / h and the explicit viscous limit.
   double stable_dt(double extra_wave_speed = 0.0) const;
   // One RK3 step of size dt from time t; the solids (if any) advance inside each substep.
-  void advance(double t, double dt, SolidPhase* solids = nullptr);
+  void advance(double t, double dt, SolidCoupling* solids = nullptr);
   FlowDiagnostics diagnostics(double dt, double wave_speed = 0.0) const;
 
   FlowState& state() { return state_; }

@@ -1,0 +1,318 @@
+#pragma once
+// The reference map (Kamrin, Rycroft & Nave 2012, J. Mech. Phys. Solids 60, 1952; Valkov, Rycroft
+// & Kamrin 2015, Proc. R. Soc. A 471; Rycroft et al. 2020, J. Fluid Mech. 898, A9): every point
+// carries the reference position xi(x, t) of the material there. We store the reference
+// displacement q = xi - x at cell centres, which is periodic wherever the domain is and zero for
+// a body at rest:
+//   d xi/dt + u . grad xi = 0   <=>   dq/dt = -u - u . grad q
+//   F = (grad xi)^-1 = (I + grad q)^-1,   B = F F^T
+//   psi = H_eps(-phi0(xi) / |grad_x phi0(xi)|)   (phi0: signed distance of the reference shape)
+// u . grad q is the WENO5 flux difference minus q div_h u, which is exact for a linear q (a rigid
+// motion) because WENO5 reconstructs a linear function exactly at every face.
+#include "core/compat.hpp"
+#include "core/launch.hpp"
+#include "core/types.hpp"
+#include "kernels/momentum.hpp"
+#include "kernels/solid_fields.hpp"
+#include "kernels/solid_transport.hpp"
+
+namespace eulerfsi::kernels {
+
+struct Vector3 {
+  Field3 c[3];
+};
+
+// The reference shape: a sphere (nearest periodic image of its centre) or the layer y < y_top.
+struct ReferenceShape {
+  bool sphere = true;
+  double centre[3] = {0, 0, 0};
+  double radius = 0.0;
+  double period[3] = {0, 0, 0};  // 0: no periodic images in that direction
+  double top = 0.0;              // layer: y of its upper surface
+  double shift = 0.0;            // phi0 - shift: the level moved to keep the volume
+
+  // phi0(X) and its gradient in the reference configuration.
+  KOKKOS_INLINE_FUNCTION double phi(const double X[3], double grad[3]) const {
+    if (!sphere) {
+      grad[0] = 0.0, grad[1] = 1.0, grad[2] = 0.0;
+      return X[1] - top - shift;
+    }
+    double d[3], r2 = 0.0;
+    for (int a = 0; a < 3; ++a) {
+      d[a] = X[a] - centre[a];
+      if (period[a] > 0.0) d[a] -= period[a] * compat::floor(d[a] / period[a] + 0.5);
+      r2 += d[a] * d[a];
+    }
+    const double r = compat::sqrt(r2);
+    for (int a = 0; a < 3; ++a) grad[a] = r > 0.0 ? d[a] / r : (a == 0 ? 1.0 : 0.0);
+    return r - radius - shift;
+  }
+};
+
+// Where the map is known, by distance from the solid ("levels"): 0 unknown, 1 solid (cell centre
+// inside the body), s + 1 filled by extrapolation sweep s.
+constexpr double kLevelSolid = 1.0;
+
+// grad q at the cell centre by central differences: G[a][b] = dq_a/dx_b.
+KOKKOS_INLINE_FUNCTION void displacement_gradient(const Vector3& q, const double inv_2h[3], int i, int j, int k,
+                                                  double G[3][3]) {
+  for (int a = 0; a < 3; ++a) {
+    G[a][0] = (q.c[a](i + 1, j, k) - q.c[a](i - 1, j, k)) * inv_2h[0];
+    G[a][1] = (q.c[a](i, j + 1, k) - q.c[a](i, j - 1, k)) * inv_2h[1];
+    G[a][2] = (q.c[a](i, j, k + 1) - q.c[a](i, j, k - 1)) * inv_2h[2];
+  }
+}
+
+// Signed distance to the body's surface in the current configuration, d = phi0(xi) / |grad_x phi0|,
+// with grad_x phi0 = (grad xi)^T grad_X phi0 and grad xi = I + grad q.
+KOKKOS_INLINE_FUNCTION double current_distance(const Vector3& q, const ReferenceShape& shape, const double x[3],
+                                               const double inv_2h[3], int i, int j, int k) {
+  double G[3][3];
+  displacement_gradient(q, inv_2h, i, j, k, G);
+  const double X[3] = {x[0] + q.c[0](i, j, k), x[1] + q.c[1](i, j, k), x[2] + q.c[2](i, j, k)};
+  double n[3];
+  const double phi = shape.phi(X, n);
+  double g2 = 0.0;
+  for (int b = 0; b < 3; ++b) {
+    double gb = n[b];
+    for (int a = 0; a < 3; ++a) gb += n[a] * G[a][b];
+    g2 += gb * gb;
+  }
+  return g2 > 0.0 ? phi / compat::sqrt(g2) : phi;
+}
+
+// Smoothed Heaviside of half-width eps (Sussman, Smereka & Osher 1994): 0 below -eps, 1 above eps,
+//   H(s) = (1 + s/eps + sin(pi s/eps)/pi) / 2   in between (continuous derivative, zero mean error).
+KOKKOS_INLINE_FUNCTION double smoothed_heaviside(double s, double eps) {
+  if (s <= -eps) return 0.0;
+  if (s >= eps) return 1.0;
+  constexpr double pi = 3.14159265358979323846;
+  return 0.5 * (1.0 + s / eps + compat::sin(pi * s / eps) / pi);
+}
+KOKKOS_INLINE_FUNCTION double smoothed_delta(double s, double eps) {
+  if (s <= -eps || s >= eps) return 0.0;
+  constexpr double pi = 3.14159265358979323846;
+  return 0.5 * (1.0 + compat::cos(pi * s / eps)) / eps;
+}
+
+// rhs_a = -u_a - u . grad q_a on every known cell (level >= 1), 0 elsewhere;
+// u . grad q = div_h^WENO(u q) - q div_h(u), u_a at the centre = mean of the two a-faces.
+inline void reference_map_rhs(const Vector3& rhs, const Vector3& q, const Field3& level, const Velocity& vel,
+                              const double h[3], const Box& box) {
+  const double ih0 = 1.0 / h[0], ih1 = 1.0 / h[1], ih2 = 1.0 / h[2];
+  const Field3 u = vel.c[0], v = vel.c[1], w = vel.c[2];
+  const Vector3 r = rhs, m = q;
+  for_each_cell("eulerfsi::refmap::rhs", box, KOKKOS_LAMBDA(int i, int j, int k) {
+    if (level(i, j, k) < kLevelSolid) {
+      for (int a = 0; a < 3; ++a) r.c[a](i, j, k) = 0.0;
+      return;
+    }
+    const double inv_h[3] = {ih0, ih1, ih2};
+    const double div = (u(i, j, k) - u(i - 1, j, k)) * ih0 + (v(i, j, k) - v(i, j - 1, k)) * ih1 +
+                       (w(i, j, k) - w(i, j, k - 1)) * ih2;
+    const double uc[3] = {0.5 * (u(i, j, k) + u(i - 1, j, k)), 0.5 * (v(i, j, k) + v(i, j - 1, k)),
+                          0.5 * (w(i, j, k) + w(i, j, k - 1))};
+    for (int a = 0; a < 3; ++a)
+      r.c[a](i, j, k) = -uc[a] - (weno_divergence(m.c[a], u, v, w, inv_h, i, j, k) - m.c[a](i, j, k) * div);
+  });
+}
+
+// Low-storage RK3 substep on the three components: q += dt (gamma rhs + zeta rhs_old).
+inline void rk3_vector_update(const Vector3& q, const Vector3& rhs, const Vector3& rhs_old, double dt, double gamma,
+                              double zeta, const Box& box) {
+  const double a = dt * gamma, c = dt * zeta;
+  const Vector3 m = q, r = rhs, ro = rhs_old;
+  for_each_cell("eulerfsi::refmap::update", box, KOKKOS_LAMBDA(int i, int j, int k) {
+    for (int s = 0; s < 3; ++s) m.c[s](i, j, k) += a * r.c[s](i, j, k) + c * ro.c[s](i, j, k);
+  });
+}
+
+// The solid after a substep: level = 1 where the cell centre is inside the body (d < 0) and the
+// cell was known before (level in [1, reach]: the body moves less than a cell per step, and an
+// unknown cell's q is stale), else 0.
+inline void classify_solid(const Field3& level, const Vector3& q, const ReferenceShape& shape, const CellCentres& xc,
+                           double reach, bool initial, const double h[3], const Box& box) {
+  const double i2h[3] = {0.5 / h[0], 0.5 / h[1], 0.5 / h[2]};
+  const double i0 = i2h[0], i1 = i2h[1], i2 = i2h[2];
+  const Vector3 m = q;
+  for_each_cell("eulerfsi::refmap::classify", box, KOKKOS_LAMBDA(int i, int j, int k) {
+    const double old = level(i, j, k);
+    if (!initial && (old < kLevelSolid || old > reach)) {
+      level(i, j, k) = 0.0;
+      return;
+    }
+    const double x[3] = {xc(0, i), xc(1, j), xc(2, k)};
+    const double inv_2h[3] = {i0, i1, i2};
+    level(i, j, k) = current_distance(m, shape, x, inv_2h, i, j, k) < 0.0 ? kLevelSolid : 0.0;
+  });
+}
+
+// Extrapolation sweep s (Rycroft et al. 2020, sec. 2.4): every unknown cell next to a cell known
+// before this sweep (1 <= level <= s, 26 neighbours) takes the value at its centre of the
+// least-squares linear fit q ~ c0 + c . r through the known cells within two cells (r in cells,
+// weight 1/|r|^2), and level = s + 1. Exact for a rigid motion (q linear). In place: the cells
+// written were unknown and are not read in this sweep (level s + 1 > s), so the order is free.
+// Fewer than four points or a degenerate set fall back to the weighted mean.
+struct ExtrapolationSweep {
+  Vector3 q;
+  Field3 level;
+  double s;
+
+  // Solves the 4x4 system M c = b (Gaussian elimination, partial pivoting) for c[0]; false if singular.
+  KOKKOS_INLINE_FUNCTION static bool solve4(double M[4][4], double b[4][3], double out[3]) {
+    for (int col = 0; col < 4; ++col) {
+      int p = col;
+      for (int r = col + 1; r < 4; ++r)
+        if (compat::fabs(M[r][col]) > compat::fabs(M[p][col])) p = r;
+      if (compat::fabs(M[p][col]) < 1e-10 * compat::fabs(M[0][0])) return false;
+      if (p != col) {
+        for (int c = 0; c < 4; ++c) { const double t = M[col][c]; M[col][c] = M[p][c]; M[p][c] = t; }
+        for (int c = 0; c < 3; ++c) { const double t = b[col][c]; b[col][c] = b[p][c]; b[p][c] = t; }
+      }
+      for (int r = col + 1; r < 4; ++r) {
+        const double f = M[r][col] / M[col][col];
+        for (int c = col; c < 4; ++c) M[r][c] -= f * M[col][c];
+        for (int c = 0; c < 3; ++c) b[r][c] -= f * b[col][c];
+      }
+    }
+    for (int c = 0; c < 3; ++c) {
+      double x[4];
+      for (int r = 3; r >= 0; --r) {
+        double v = b[r][c];
+        for (int m = r + 1; m < 4; ++m) v -= M[r][m] * x[m];
+        x[r] = v / M[r][r];
+      }
+      out[c] = x[0];
+    }
+    return true;
+  }
+
+  KOKKOS_INLINE_FUNCTION bool known(int i, int j, int k) const {
+    const double l = level(i, j, k);
+    return l >= kLevelSolid && l <= s;
+  }
+
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k) const {
+    if (level(i, j, k) != 0.0) return;
+    bool touches = false;
+    for (int a = -1; a <= 1 && !touches; ++a)
+      for (int b = -1; b <= 1 && !touches; ++b)
+        for (int c = -1; c <= 1 && !touches; ++c) touches = known(i + a, j + b, k + c);
+    if (!touches) return;
+    double M[4][4] = {}, rhs[4][3] = {}, mean[3] = {0, 0, 0}, wsum = 0.0;
+    for (int a = -2; a <= 2; ++a)
+      for (int b = -2; b <= 2; ++b)
+        for (int c = -2; c <= 2; ++c) {
+          if (!known(i + a, j + b, k + c)) continue;
+          const double w = 1.0 / double(a * a + b * b + c * c);
+          const double basis[4] = {1.0, double(a), double(b), double(c)};
+          for (int r = 0; r < 4; ++r) {
+            for (int col = 0; col < 4; ++col) M[r][col] += w * basis[r] * basis[col];
+            for (int d = 0; d < 3; ++d) rhs[r][d] += w * basis[r] * q.c[d](i + a, j + b, k + c);
+          }
+          for (int d = 0; d < 3; ++d) mean[d] += w * q.c[d](i + a, j + b, k + c);
+          wsum += w;
+        }
+    double value[3];
+    if (!solve4(M, rhs, value))
+      for (int d = 0; d < 3; ++d) value[d] = mean[d] / wsum;
+    for (int d = 0; d < 3; ++d) q.c[d](i, j, k) = value[d];
+    level(i, j, k) = s + 1.0;
+  }
+};
+
+inline void extrapolation_sweep(const Vector3& q, const Field3& level, int sweep, const Box& box) {
+  for_each_cell("eulerfsi::refmap::extrapolate", box, ExtrapolationSweep{q, level, double(sweep)});
+}
+
+// psi and B from the map on the known cells whose central differences read known cells
+// (1 <= level <= max_level); psi = 0 and B = I elsewhere.
+//   psi = H_eps(-d),  B = F F^T,  F = (I + grad q)^-1
+inline void solid_from_map(const Field3& psi, const Tensor6& b, const Vector3& q, const Field3& level,
+                           const ReferenceShape& shape, const CellCentres& xc, double eps, double max_level,
+                           const double h[3], const Box& box) {
+  const double i0 = 0.5 / h[0], i1 = 0.5 / h[1], i2 = 0.5 / h[2];
+  const Vector3 m = q;
+  const Tensor6 bb = b;
+  for_each_cell("eulerfsi::refmap::psi_and_b", box, KOKKOS_LAMBDA(int i, int j, int k) {
+    const double l = level(i, j, k);
+    if (l < kLevelSolid || l > max_level) {
+      psi(i, j, k) = 0.0;
+      for (int c = 0; c < kTensorComponents; ++c) bb.c[c](i, j, k) = c < 3 ? 1.0 : 0.0;
+      return;
+    }
+    const double inv_2h[3] = {i0, i1, i2};
+    const double x[3] = {xc(0, i), xc(1, j), xc(2, k)};
+    psi(i, j, k) = smoothed_heaviside(-current_distance(m, shape, x, inv_2h, i, j, k), eps);
+    // F = A^-1 with A = grad xi = I + grad q, by cofactors
+    double G[3][3];
+    displacement_gradient(m, inv_2h, i, j, k, G);
+    double A[3][3];
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < 3; ++c) A[a][c] = (a == c ? 1.0 : 0.0) + G[a][c];
+    const double det = A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) -
+                       A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
+                       A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
+    double F[3][3];
+    F[0][0] = (A[1][1] * A[2][2] - A[1][2] * A[2][1]) / det;
+    F[0][1] = (A[0][2] * A[2][1] - A[0][1] * A[2][2]) / det;
+    F[0][2] = (A[0][1] * A[1][2] - A[0][2] * A[1][1]) / det;
+    F[1][0] = (A[1][2] * A[2][0] - A[1][0] * A[2][2]) / det;
+    F[1][1] = (A[0][0] * A[2][2] - A[0][2] * A[2][0]) / det;
+    F[1][2] = (A[0][2] * A[1][0] - A[0][0] * A[1][2]) / det;
+    F[2][0] = (A[1][0] * A[2][1] - A[1][1] * A[2][0]) / det;
+    F[2][1] = (A[0][1] * A[2][0] - A[0][0] * A[2][1]) / det;
+    F[2][2] = (A[0][0] * A[1][1] - A[0][1] * A[1][0]) / det;
+    const int ra[kTensorComponents] = {0, 1, 2, 0, 0, 1};
+    const int rc[kTensorComponents] = {0, 1, 2, 1, 2, 2};
+    for (int s = 0; s < kTensorComponents; ++s) {
+      double v = 0.0;
+      for (int n = 0; n < 3; ++n) v += F[ra[s]][n] * F[rc[s]][n];
+      bb.c[s](i, j, k) = v;
+    }
+  });
+}
+
+// sum psi and sum |grad psi| (central differences) over the box, times the cell volume: the
+// body's volume and surface area (dV/dshift of the level shift, for the volume correction).
+inline void volume_and_area(const Field3& psi, const double h[3], const Box& box, double& volume, double& area) {
+  const double i0 = 0.5 / h[0], i1 = 0.5 / h[1], i2 = 0.5 / h[2], dv = h[0] * h[1] * h[2];
+  double v = 0.0, a = 0.0;
+  reduce_cells("eulerfsi::refmap::volume", box, KOKKOS_LAMBDA(int i, int j, int k, double& acc) {
+    acc += psi(i, j, k) * dv;
+  }, Kokkos::Sum<double>(v));
+  reduce_cells("eulerfsi::refmap::area", box, KOKKOS_LAMBDA(int i, int j, int k, double& acc) {
+    const double gx = (psi(i + 1, j, k) - psi(i - 1, j, k)) * i0;
+    const double gy = (psi(i, j + 1, k) - psi(i, j - 1, k)) * i1;
+    const double gz = (psi(i, j, k + 1) - psi(i, j, k - 1)) * i2;
+    acc += compat::sqrt(gx * gx + gy * gy + gz * gz) * dv;
+  }, Kokkos::Sum<double>(a));
+  volume = v;
+  area = a;
+}
+
+// Ghosts of q at a wall (y or z): linear extrapolation from the first two interior cells,
+// q(-m) = q(0) - m (q(1) - q(0)), exact for a linear map (the mirror fill of a scalar is not).
+inline void extrapolate_wall_ghosts(const Vector3& q, int dir, int n_interior, const Box& all) {
+  const int lo = kGhost, hi = kGhost + n_interior - 1;
+  Box plane = all;
+  plane.lo[dir] = 0;
+  plane.hi[dir] = 1;
+  for (int a = 0; a < 3; ++a) {
+    const Field3 f = q.c[a];
+    for_each_cell("eulerfsi::refmap::wall_ghosts", plane, KOKKOS_LAMBDA(int i, int j, int k) {
+      for (int m = 1; m <= kGhost; ++m) {
+        const int idx[2][2] = {{lo - m, lo}, {hi + m, hi}};
+        for (int side = 0; side < 2; ++side) {
+          const int g = idx[side][0], b0 = idx[side][1], b1 = side == 0 ? lo + 1 : hi - 1;
+          auto at = [&](int s) -> double& {
+            return dir == 1 ? f(i, s, k) : f(i, j, s);
+          };
+          at(g) = at(b0) - m * (at(b1) - at(b0));
+        }
+      }
+    });
+  }
+}
+
+}  // namespace eulerfsi::kernels

@@ -1,0 +1,36 @@
+#pragma once
+// The paper's solid model (Alghalibi, Rosti & Brandt 2019, after Sugiyama et al. 2011):
+//   dpsi/dt + div(u psi) = 0,   dB/dt + div(u B) = L B + B L^T
+// both advected with WENO5 fluxes; psi clipped conservatively to [0, 1]; B outside the solid
+// extended from it over the WENO reach and I beyond (kernels/tensor_extension.hpp); optional
+// interface sharpening (Olsson, Kreiss & Zahedi 2007, experimental).
+#include "solid/solid_model.hpp"
+
+namespace eulerfsi {
+
+class PaperModel final : public SolidModel {
+ public:
+  PaperModel(const CaseConfig& cfg, const Grid& grid, const BoundaryConditions& bc, const Comm& comm);
+  void set_initial_condition(SolidBody& body) override;
+  void advance_substep(SolidBody& body, const kernels::Velocity& vel, double dt, int substep) override;
+  void fill_ghosts(SolidBody& body) override;
+
+ private:
+  void sharpen(SolidBody& body);
+  void extend_tensor(SolidBody& body);
+  void clip_conserving(const Field3& psi) const;
+
+  Grid grid_;
+  const BoundaryConditions* bc_;
+  Comm comm_;
+  Field3 psi_rhs_, psi_rhs_old_;          // RK3 rhs and memory (zeta term)
+  kernels::Tensor6 b_rhs_, b_rhs_old_;
+};
+
+// psi = fraction of n^3 sub-sampled points of each cell inside the body's initial shape
+// (sphere: nearest periodic image); shared by the models that start from a volume fraction.
+void fill_volume_fraction(const Field3& psi, const Grid& g, const SolidConfig& s, int n);
+void set_identity(const kernels::Tensor6& b);
+kernels::Tensor6 make_tensor(const Grid& g, const char* label);
+
+}  // namespace eulerfsi

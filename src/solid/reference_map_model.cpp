@@ -1,0 +1,173 @@
+#include "solid/reference_map_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "kernels/tensor_extension.hpp"
+#include "solid/paper_model.hpp"
+#include "solver/rk3.hpp"
+
+namespace eulerfsi {
+
+namespace {
+
+// Extrapolation sweeps: the WENO5 stencil of a cell next to the body reads 3 cells outward, and
+// the central differences of psi and B one more, so q is known 4 cells beyond the body.
+constexpr int kBand = 4;
+// psi and B are derived where their central differences read known cells (levels 1..kBand).
+constexpr double kMaxDerivedLevel = kBand;
+// A cell may turn solid only if it was within 2 cells of the body (level <= 3): the body moves
+// less than one cell per step (CFL < 1), and farther cells were advected with stale neighbours.
+constexpr double kSolidReach = 3.0;
+// Half-width of the smoothed Heaviside, in cells: psi goes from 0 to 1 over 3 cells.
+constexpr double kHalfWidthCells = 1.5;
+
+// Newton steps on the level shift at t = 0 (each divides the volume error by ~30).
+constexpr int kInitialVolumeIterations = 6;
+
+// Volume of the reference shape: the sphere's, or the layer's (y < y_top across the whole x-z plane).
+double exact_volume(const SolidConfig& s, const Grid& g) {
+  if (s.shape == SolidShape::Sphere) return M_PI / 6.0 * s.diameter * s.diameter * s.diameter;
+  return s.thickness * g.length[0] * g.length[2];
+}
+
+kernels::Vector3 make_vector(const Grid& g, const char* label) {
+  kernels::Vector3 v;
+  for (int a = 0; a < 3; ++a) v.c[a] = g.make_field(label);
+  return v;
+}
+
+}  // namespace
+
+ReferenceMapModel::ReferenceMapModel(const SolidConfig& solid, const CaseConfig&, const Grid& grid,
+                                     const BoundaryConditions& bc, const Comm& comm)
+    : grid_(grid), bc_(&bc), comm_(comm), q_(make_vector(grid, "xi_minus_x")), rhs_(make_vector(grid, "xi_rhs")),
+      rhs_old_(make_vector(grid, "xi_rhs_old")), level_(grid.make_field("xi_level")) {
+  shape_.sphere = solid.shape == SolidShape::Sphere;
+  for (int a = 0; a < 3; ++a) shape_.centre[a] = solid.center[a];
+  shape_.radius = 0.5 * solid.diameter;
+  for (int a = 0; a < 3; ++a) shape_.period[a] = grid.bc[a] == Boundary::Periodic ? grid.length[a] : 0.0;
+  shape_.top = grid.domain_lo(1) + solid.thickness;
+  for (int a = 0; a < 3; ++a) {
+    centres_.h[a] = grid.h[a];
+    centres_.x0[a] = grid.centre(a, 0);
+  }
+  eps_ = kHalfWidthCells * std::max(grid.h[0], std::max(grid.h[1], grid.h[2]));
+}
+
+void ReferenceMapModel::set_initial_condition(SolidBody& body) {
+  for (int a = 0; a < 3; ++a) Kokkos::deep_copy(q_.c[a], 0.0);
+  for (int a = 0; a < 3; ++a) Kokkos::deep_copy(rhs_old_.c[a], 0.0);
+  set_identity(body.b);
+  Kokkos::deep_copy(body.psi, 0.0);
+  shape_.shift = 0.0;
+  const Box box = grid_.interior();
+  kernels::classify_solid(level_, q_, shape_, centres_, kSolidReach, true, grid_.h, box);
+  bc_->fill_scalar(level_);
+  active_ = box;
+  extrapolate(box);
+  // the smoothed edge adds 8 pi R int_0^eps (1 - H) s ds... = 5.5 % of a sphere 8 cells across:
+  // the level is shifted until sum psi dV is the reference shape's exact volume
+  volume0_ = exact_volume(body.cfg, grid_);
+  derive_solid(body, box);
+  for (int it = 0; it < kInitialVolumeIterations; ++it) correct_volume(body, box);
+  for (int c = 0; c < kernels::kTensorComponents; ++c) Kokkos::deep_copy(body.b_prev.c[c], body.b.c[c]);
+  update_active_box();
+}
+
+void ReferenceMapModel::advance_substep(SolidBody& body, const kernels::Velocity& vel, double dt, int substep) {
+  const Box box = active_;
+  // dq/dt = -u - u . grad q on the known cells (WENO5, RK3)
+  kernels::reference_map_rhs(rhs_, q_, level_, vel, grid_.h, box);
+  kernels::rk3_vector_update(q_, rhs_, rhs_old_, dt, Rk3::gamma[substep], Rk3::zeta[substep], box);
+  std::swap(rhs_, rhs_old_);
+  fill_map_ghosts();
+  // the body where it is now, then q outside it again from the body's own values
+  kernels::classify_solid(level_, q_, shape_, centres_, kSolidReach, false, grid_.h, box);
+  bc_->fill_scalar(level_);
+  extrapolate(box);
+  for (int c = 0; c < kernels::kTensorComponents; ++c) Kokkos::deep_copy(body.b_prev.c[c], body.b.c[c]);
+  derive_solid(body, box);
+  if (correct_volume_) correct_volume(body, box);
+  update_active_box();
+}
+
+// One Newton step on V(shift) = V0 with dV/dshift = the surface area; psi and B derived again.
+void ReferenceMapModel::correct_volume(SolidBody& body, const Box& region) {
+  double volume = 0.0, area = 0.0;
+  kernels::volume_and_area(body.psi, grid_.h, region, volume, area);
+  volume = comm_.sum(volume);
+  area = comm_.sum(area);
+  if (area <= 0.0) return;
+  shape_.shift += (volume0_ - volume) / area;
+  derive_solid(body, region);
+}
+
+// Extrapolation sweeps 1..kBand, each from the cells known before it; the ghosts between sweeps
+// carry what the neighbouring rank (or the periodic image) extrapolated.
+void ReferenceMapModel::extrapolate(const Box& region) {
+  for (int sweep = 1; sweep <= kBand; ++sweep) {
+    kernels::extrapolation_sweep(q_, level_, sweep, region);
+    fill_map_ghosts();
+    bc_->fill_scalar(level_);
+  }
+}
+
+void ReferenceMapModel::derive_solid(SolidBody& body, const Box& region) {
+  kernels::solid_from_map(body.psi, body.b, q_, level_, shape_, centres_, eps_, kMaxDerivedLevel, grid_.h, region);
+  bc_->fill_scalar(body.psi);
+  for (int c = 0; c < kernels::kTensorComponents; ++c) bc_->fill_scalar(body.b.c[c]);
+}
+
+// The known cells move less than a cell per substep: their new bounding box is searched within
+// the old active box grown by the ghost width, ghosts included.
+void ReferenceMapModel::update_active_box() {
+  const Box all = grid_.all(), interior = grid_.interior();
+  Box search = all, known;
+  // a rank without the body searches its whole slab: the body may enter from either side
+  if (active_.size() > 0)
+    for (int d = 0; d < 3; ++d) {
+      search.lo[d] = std::max(all.lo[d], active_.lo[d] - kGhost);
+      search.hi[d] = std::min(all.hi[d], active_.hi[d] + kGhost);
+    }
+  if (!kernels::known_bounding_box(level_, search, known)) {
+    active_ = Box{{interior.lo[0], interior.lo[1], interior.lo[2]}, {interior.lo[0], interior.lo[1], interior.lo[2]}};
+    return;
+  }
+  for (int d = 0; d < 3; ++d) {
+    active_.lo[d] = std::max(interior.lo[d], known.lo[d] - 2);
+    active_.hi[d] = std::min(interior.hi[d], known.hi[d] + 2);
+  }
+}
+
+// Periodic directions and ranks by the halo exchange (q is periodic); walls by linear extrapolation.
+void ReferenceMapModel::fill_map_ghosts() {
+  for (int a = 0; a < 3; ++a) bc_->fill_scalar(q_.c[a]);
+  for (int d = 1; d < 3; ++d)
+    if (grid_.bc[d] == Boundary::Wall) kernels::extrapolate_wall_ghosts(q_, d, grid_.n[d], grid_.all());
+}
+
+std::vector<std::pair<std::string, Field3>> ReferenceMapModel::checkpoint_fields() {
+  return {{"xi_qx", q_.c[0]}, {"xi_qy", q_.c[1]}, {"xi_qz", q_.c[2]}, {"xi_level", level_}};
+}
+
+std::map<std::string, double> ReferenceMapModel::checkpoint_scalars() const {
+  return {{"refmap.shift", shape_.shift}, {"refmap.volume0", volume0_}};
+}
+
+void ReferenceMapModel::restore_scalars(const std::map<std::string, double>& s) {
+  if (s.count("refmap.shift")) shape_.shift = s.at("refmap.shift");
+  if (s.count("refmap.volume0")) volume0_ = s.at("refmap.volume0");
+}
+
+void ReferenceMapModel::fill_ghosts(SolidBody& body) {
+  fill_map_ghosts();
+  active_ = grid_.interior();  // searched again from the whole slab after a restore
+  bc_->fill_scalar(level_);
+  bc_->fill_scalar(body.psi);
+  for (int c = 0; c < kernels::kTensorComponents; ++c) bc_->fill_scalar(body.b.c[c]);
+  update_active_box();
+}
+
+}  // namespace eulerfsi

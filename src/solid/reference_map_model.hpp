@@ -1,0 +1,56 @@
+#pragma once
+// The reference-map solid model (Kamrin, Rycroft & Nave 2012; Rycroft et al. 2020): the body
+// carries the reference displacement q = xi - x (kernels/reference_map.hpp), advected with WENO5;
+// outside the body q is extrapolated by least squares over a band as wide as the stencils read;
+// psi is a smoothed Heaviside of the distance phi0(xi) / |grad phi0(xi)| (half-width 1.5 h), and
+// B = F F^T with F = (grad xi)^-1. A rigid motion keeps q linear, which WENO5 and the
+// extrapolation carry exactly, so a rotating body keeps its shape at 8 cells per diameter.
+// The level of phi0 is shifted to give psi the reference shape's exact volume at t = 0 and to
+// keep it there (one Newton step per substep on V(shift) with dV/dshift = surface area); the
+// shift is checkpointed.
+// Shapes: the sphere and the layer (any geometry; q is periodic wherever the domain is).
+#include "kernels/reference_map.hpp"
+#include "solid/solid_model.hpp"
+
+namespace eulerfsi {
+
+class ReferenceMapModel final : public SolidModel {
+ public:
+  ReferenceMapModel(const SolidConfig& solid, const CaseConfig& cfg, const Grid& grid, const BoundaryConditions& bc,
+                    const Comm& comm);
+  void set_initial_condition(SolidBody& body) override;
+  void advance_substep(SolidBody& body, const kernels::Velocity& vel, double dt, int substep) override;
+  std::vector<std::pair<std::string, Field3>> checkpoint_fields() override;
+  std::map<std::string, double> checkpoint_scalars() const override;
+  void restore_scalars(const std::map<std::string, double>& s) override;
+  void fill_ghosts(SolidBody& body) override;
+
+  // The level shift that keeps the volume (0 without drift) and the volume it keeps.
+  double level_shift() const { return shape_.shift; }
+  double target_volume() const { return volume0_; }
+  const kernels::Vector3& displacement() const { return q_; }
+
+ private:
+  void fill_map_ghosts();
+  void extrapolate(const Box& region);
+  void derive_solid(SolidBody& body, const Box& region);
+  void update_active_box();
+  void correct_volume(SolidBody& body, const Box& region);
+
+  Grid grid_;
+  const BoundaryConditions* bc_;
+  Comm comm_;
+  kernels::ReferenceShape shape_;
+  kernels::CellCentres centres_;
+  kernels::Vector3 q_, rhs_, rhs_old_;
+  Field3 level_;
+  // The owned cells within reach of the body: the bounding box of the known cells (ghosts
+  // included, so a body about to cross into this rank's slab is seen) grown by two cells. Every
+  // kernel runs on it; outside it q is not used, psi = 0 and B = I.
+  Box active_;
+  double eps_;
+  double volume0_ = 0.0;
+  bool correct_volume_ = true;
+};
+
+}  // namespace eulerfsi

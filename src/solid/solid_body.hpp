@@ -1,0 +1,26 @@
+#pragma once
+// One soft body as the momentum equation and the diagnostics see it, whatever model carries it:
+// the volume fraction psi, the left Cauchy-Green tensor B (before and after the latest update),
+// the shear modulus and the solid viscosity. How psi and B move is the model's business
+// (src/solid/solid_model.hpp).
+#include <memory>
+
+#include "config/case_config.hpp"
+#include "core/types.hpp"
+#include "kernels/solid_fields.hpp"
+
+namespace eulerfsi {
+
+class SolidModel;
+
+struct SolidBody {
+  SolidConfig cfg;
+  double G = 1.0;      // shear modulus 1/We
+  double mu_s = 0.0;   // solid viscosity (viscosity_ratio / Re)
+  Field3 psi;          // volume fraction
+  kernels::Tensor6 b;        // B at the current substep
+  kernels::Tensor6 b_prev;   // B before the latest update (Crank-Nicolson average with b)
+  std::shared_ptr<SolidModel> model;  // how psi and B are carried (paper or reference map)
+};
+
+}  // namespace eulerfsi

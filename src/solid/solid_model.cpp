@@ -1,0 +1,19 @@
+#include "solid/solid_model.hpp"
+
+#include "solid/paper_model.hpp"
+#include "solid/reference_map_model.hpp"
+
+namespace eulerfsi {
+
+std::shared_ptr<SolidModel> make_solid_model(const SolidConfig& solid, const CaseConfig& cfg, const Grid& grid,
+                                             const BoundaryConditions& bc, const Comm& comm) {
+  switch (solid.model) {
+    case SolidModelKind::ReferenceMap:
+      return std::make_shared<ReferenceMapModel>(solid, cfg, grid, bc, comm);
+    case SolidModelKind::Paper:
+      break;
+  }
+  return std::make_shared<PaperModel>(cfg, grid, bc, comm);
+}
+
+}  // namespace eulerfsi

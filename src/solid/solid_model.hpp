@@ -1,0 +1,46 @@
+#pragma once
+// A solid model carries one body's shape psi and deformation B through the flow. The stress
+// psi G (B - I), the mixture viscosity, the diagnostics and the output are shared by all models
+// (solid_phase.cpp, particle_diagnostics.cpp); a model decides only how psi and B move.
+//
+// Models (one pair of files each, kernels in kernels/):
+//   paper_model.*          psi and B advected with WENO5 (Alghalibi, Rosti & Brandt 2019)
+//   reference_map_model.*  the reference map xi advected; psi = H(-phi0(xi)), B = F F^T with
+//                          F = (grad xi)^-1 (Kamrin, Rycroft & Nave 2012)
+// A third model (say Mooney-Rivlin through the reference map, or a viscoelastic shell) derives
+// from SolidModel and is added to make_solid_model() and to SolidModelKind in the case config.
+#include <map>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "config/case_config.hpp"
+#include "grid/grid.hpp"
+#include "kernels/momentum.hpp"
+#include "parallel/comm.hpp"
+#include "solid/solid_body.hpp"
+#include "solver/boundary_conditions.hpp"
+
+namespace eulerfsi {
+
+class SolidModel {
+ public:
+  virtual ~SolidModel() = default;
+  // psi of the initial shape and B = I, ghosts filled.
+  virtual void set_initial_condition(SolidBody& body) = 0;
+  // One RK3 substep: b_prev <- B, then psi and B advanced with vel; ghosts filled on return.
+  virtual void advance_substep(SolidBody& body, const kernels::Velocity& vel, double dt, int substep) = 0;
+  // Fields a checkpoint stores besides psi and B, under names unique within the body.
+  virtual std::vector<std::pair<std::string, Field3>> checkpoint_fields() { return {}; }
+  // Scalars a checkpoint stores (e.g. a volume correction), and their restoration.
+  virtual std::map<std::string, double> checkpoint_scalars() const { return {}; }
+  virtual void restore_scalars(const std::map<std::string, double>&) {}
+  // After a checkpoint was read: ghosts of everything the model holds.
+  virtual void fill_ghosts(SolidBody& body) = 0;
+};
+
+std::shared_ptr<SolidModel> make_solid_model(const SolidConfig& solid, const CaseConfig& cfg, const Grid& grid,
+                                             const BoundaryConditions& bc, const Comm& comm);
+
+}  // namespace eulerfsi

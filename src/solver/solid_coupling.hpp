@@ -1,0 +1,22 @@
+#pragma once
+// What the momentum equation needs from the soft bodies, whatever model carries them
+// (src/solid/): the solver calls these and knows nothing else about solids.
+//   du/dt + div(u u) = -grad p + div[2 mu(psi) E] + div[sum_s psi_s G_s (B_s - I)] + ...
+#include "kernels/momentum.hpp"
+
+namespace eulerfsi {
+
+class SolidCoupling {
+ public:
+  virtual ~SolidCoupling() = default;
+  // (i) of the substep: every body's shape and deformation advanced with the current velocity.
+  virtual void advance_substep(const kernels::Velocity& vel, double dt, int substep) = 0;
+  // mu = mu_f + sum_s psi_s (mu_s - mu_f), ghosts included.
+  virtual void mixture_viscosity(const Field3& mu, double mu_fluid) const = 0;
+  // rhs_D += d/dx_E [ psi G ((B^k + B^(k-1))/2 - I)_DE ] for every body.
+  virtual void add_elastic_force(const kernels::Velocity& rhs) const = 0;
+  // Fastest elastic shear-wave speed sqrt(G) among the bodies (enters the CFL condition).
+  virtual double max_wave_speed() const = 0;
+};
+
+}  // namespace eulerfsi

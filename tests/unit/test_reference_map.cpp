@@ -1,0 +1,93 @@
+// The reference-map solid model (src/solid/reference_map_model.*): kinematics with a prescribed
+// velocity, where the exact answer is known.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "kernels/reference_map.hpp"
+#include "solid/particle_diagnostics.hpp"
+#include "solid/reference_map_model.hpp"
+#include "solid/solid_phase.hpp"
+#include "support/flow_case.hpp"
+#include "support/mpi_env.hpp"
+
+using namespace eulerfsi;
+
+namespace {
+
+CaseConfig box_with_sphere(int n, SolidModelKind model) {
+  CaseConfig cfg = test::small_case(Geometry::Periodic, n, n, n, 1.0, 1.0, 1.0, 100.0, InitialFlow::Rest);
+  SolidConfig s;
+  s.diameter = 0.25;  // 8 cells across on 32^3
+  s.center = {0.5, 0.0, 0.0};
+  s.We = 1.0;
+  s.model = model;
+  cfg.solids.push_back(s);
+  return cfg;
+}
+
+// Rigid rotation about the sphere's centre, u = omega e_z x (x - c), at each face. u depends on y
+// only and v on x only, so the discrete divergence is exactly zero.
+void set_rotation(const Grid& g, const kernels::Velocity& vel, double omega, double cx) {
+  const Field3 u = vel.c[0], v = vel.c[1], w = vel.c[2];
+  const double hx = g.h[0], hy = g.h[1], y0 = g.domain_lo(1);
+  const int xo = g.x_offset;
+  for_each_cell("test::rotation", g.all(), KOKKOS_LAMBDA(int i, int j, int k) {
+    u(i, j, k) = -omega * (y0 + (j - kGhost + 0.5) * hy);
+    v(i, j, k) = omega * ((i - kGhost + xo + 0.5) * hx - cx);
+    w(i, j, k) = 0.0;
+  });
+}
+
+struct RotationResult {
+  double D0 = 0.0, D = 0.0, volume0 = 0.0, volume = 0.0, shift = 0.0;
+};
+
+// Rotates the body by `angle` radians with the solver's own RK3 substeps at CFL 0.2 on the edge speed.
+RotationResult rotate(int n, SolidModelKind model, double angle) {
+  const CaseConfig cfg = box_with_sphere(n, model);
+  test::CoupledCase run(cfg);
+  const double omega = 0.5, cx = 0.5;
+  set_rotation(run.grid, run.flow.state().vel, omega, cx);
+  RotationResult r;
+  const ParticleState p0 = run.particle();
+  r.D0 = p0.taylor_D;
+  r.volume0 = p0.volume;
+  const double h = run.grid.h[0];
+  const double dt_cfl = 0.2 * h / (omega * 0.5);  // the sphere's edge moves at omega * 0.125; the box's at 0.5 omega
+  const long steps = std::lround(angle / omega / dt_cfl);
+  const double dt = angle / omega / double(steps);
+  for (long s = 0; s < steps; ++s)
+    for (int sub = 0; sub < 3; ++sub) run.solids.advance_substep(run.flow.state().vel, dt, sub);
+  const ParticleState p = run.particle();
+  r.D = p.taylor_D;
+  r.volume = p.volume;
+  if (auto* m = dynamic_cast<ReferenceMapModel*>(run.solids.bodies()[0].model.get())) r.shift = m->level_shift();
+  return r;
+}
+
+}  // namespace
+
+// A rigid rotation keeps the reference displacement q = xi - x linear in x, which WENO5 and the
+// least-squares extrapolation carry exactly; RK3's phase error is (omega dt)^4 / 24 per step
+// (~1e-9 rad over 10 rad here). So the shape after 10 rad differs from the initial one only by
+// round-off and by how the grid samples a rotated smoothed sphere (psi = H(-d) is a smooth function
+// of the exact distance). The issue asks for D < 1e-3 at 8 cells per diameter after 10 rad
+// (measured: 3.5e-7); the paper model reads 0.021 after 1 rad (RotatingSphereConvergesToASphere in
+// test_solid_kernels). The error must not grow with resolution: 16 against 8 cells per diameter
+// after 2 rad (10 rad at 16 cells, 4 min on 2 cores, gave 4.8e-8 against 3.5e-7).
+TEST(ReferenceMap, RigidRotationKeepsTheSphere) {
+  const RotationResult a = rotate(32, SolidModelKind::ReferenceMap, 10.0);
+  const RotationResult b = rotate(32, SolidModelKind::ReferenceMap, 2.0);
+  const RotationResult c = rotate(64, SolidModelKind::ReferenceMap, 2.0);
+  if (test::rank() == 0) {
+    std::printf("reference map, 8 cells per d: 10 rad: D %.3e -> %.3e, volume %+.2e, level shift %.2e h\n", a.D0,
+                a.D, a.volume / a.volume0 - 1.0, a.shift * 32);
+    std::printf("  2 rad: D %.3e (8 cells per d), %.3e (16)\n", b.D, c.D);
+  }
+  EXPECT_LT(a.D, 1e-3);
+  EXPECT_LE(c.D, b.D);
+  // the level shift holds the volume to the accuracy of one Newton step per substep
+  EXPECT_NEAR(a.volume / a.volume0, 1.0, 1e-6);
+}
