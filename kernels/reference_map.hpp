@@ -64,20 +64,25 @@ KOKKOS_INLINE_FUNCTION void displacement_gradient(const Vector3& q, const double
 }
 
 // Signed distance to the body's surface in the current configuration, d = phi0(xi) / |grad_x phi0|,
-// with grad_x phi0 = (grad xi)^T grad_X phi0 and grad xi = I + grad q.
+// with grad_x phi0 = (grad xi)^T grad_X phi0 and grad xi = I + grad q. `normal_h` (if given) gets
+// the grid spacing along the surface normal, |n . diag(h)|, which sets the width of psi's edge.
 KOKKOS_INLINE_FUNCTION double current_distance(const Vector3& q, const ReferenceShape& shape, const double x[3],
-                                               const double inv_2h[3], int i, int j, int k) {
+                                               const double inv_2h[3], int i, int j, int k,
+                                               double* normal_h = nullptr) {
   double G[3][3];
   displacement_gradient(q, inv_2h, i, j, k, G);
   const double X[3] = {x[0] + q.c[0](i, j, k), x[1] + q.c[1](i, j, k), x[2] + q.c[2](i, j, k)};
   double n[3];
   const double phi = shape.phi(X, n);
-  double g2 = 0.0;
+  double g2 = 0.0, gh2 = 0.0;
   for (int b = 0; b < 3; ++b) {
     double gb = n[b];
     for (int a = 0; a < 3; ++a) gb += n[a] * G[a][b];
     g2 += gb * gb;
+    const double hb = 0.5 / inv_2h[b];
+    gh2 += gb * gb * hb * hb;
   }
+  if (normal_h) *normal_h = g2 > 0.0 ? compat::sqrt(gh2 / g2) : 0.5 / inv_2h[0];
   return g2 > 0.0 ? phi / compat::sqrt(g2) : phi;
 }
 
@@ -227,9 +232,9 @@ inline void extrapolation_sweep(const Vector3& q, const Field3& level, int sweep
 
 // psi and B from the map on the known cells whose central differences read known cells
 // (1 <= level <= max_level); psi = 0 and B = I elsewhere.
-//   psi = H_eps(-d),  B = F F^T,  F = (I + grad q)^-1
+//   psi = H_eps(-d),  eps = width x (grid spacing along the normal),  B = F F^T,  F = (I + grad q)^-1
 inline void solid_from_map(const Field3& psi, const Tensor6& b, const Vector3& q, const Field3& level,
-                           const ReferenceShape& shape, const CellCentres& xc, double eps, double max_level,
+                           const ReferenceShape& shape, const CellCentres& xc, double width, double max_level,
                            const double h[3], const Box& box) {
   const double i0 = 0.5 / h[0], i1 = 0.5 / h[1], i2 = 0.5 / h[2];
   const Vector3 m = q;
@@ -243,7 +248,9 @@ inline void solid_from_map(const Field3& psi, const Tensor6& b, const Vector3& q
     }
     const double inv_2h[3] = {i0, i1, i2};
     const double x[3] = {xc(0, i), xc(1, j), xc(2, k)};
-    psi(i, j, k) = smoothed_heaviside(-current_distance(m, shape, x, inv_2h, i, j, k), eps);
+    double hn = 0.0;
+    const double d = current_distance(m, shape, x, inv_2h, i, j, k, &hn);
+    psi(i, j, k) = smoothed_heaviside(-d, width * hn);
     // F = A^-1 with A = grad xi = I + grad q, by cofactors
     double G[3][3];
     displacement_gradient(m, inv_2h, i, j, k, G);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <utility>
 
+#include "core/launch.hpp"
 #include "kernels/tensor_extension.hpp"
 #include "solid/paper_model.hpp"
 #include "solver/rk3.hpp"
@@ -20,7 +21,8 @@ constexpr double kMaxDerivedLevel = kBand;
 // A cell may turn solid only if it was within 2 cells of the body (level <= 3): the body moves
 // less than one cell per step (CFL < 1), and farther cells were advected with stale neighbours.
 constexpr double kSolidReach = 3.0;
-// Half-width of the smoothed Heaviside, in cells: psi goes from 0 to 1 over 3 cells.
+// Half-width of the smoothed Heaviside, in cells along the surface normal: psi goes from 0 to 1
+// over 3 cells.
 constexpr double kHalfWidthCells = 1.5;
 
 // Newton steps on the level shift at t = 0 (each divides the volume error by ~30).
@@ -30,6 +32,22 @@ constexpr int kInitialVolumeIterations = 6;
 double exact_volume(const SolidConfig& s, const Grid& g) {
   if (s.shape == SolidShape::Sphere) return M_PI / 6.0 * s.diameter * s.diameter * s.diameter;
   return s.thickness * g.length[0] * g.length[2];
+}
+
+void copy_tensor(const kernels::Tensor6& dst, const kernels::Tensor6& src, const Box& region) {
+  for_each_cell("eulerfsi::refmap::b_prev", region, KOKKOS_LAMBDA(int i, int j, int k) {
+    for (int c = 0; c < kernels::kTensorComponents; ++c) dst.c[c](i, j, k) = src.c[c](i, j, k);
+  });
+}
+
+// The box grown by the ghost width, within the storage of the slab.
+Box grown_into_ghosts(const Box& b) {
+  Box g = b;
+  for (int d = 0; d < 3; ++d) {
+    g.lo[d] = std::max(0, b.lo[d] - kGhost);
+    g.hi[d] = b.hi[d] + kGhost;
+  }
+  return g;
 }
 
 kernels::Vector3 make_vector(const Grid& g, const char* label) {
@@ -53,7 +71,6 @@ ReferenceMapModel::ReferenceMapModel(const SolidConfig& solid, const CaseConfig&
     centres_.h[a] = grid.h[a];
     centres_.x0[a] = grid.centre(a, 0);
   }
-  eps_ = kHalfWidthCells * std::max(grid.h[0], std::max(grid.h[1], grid.h[2]));
 }
 
 void ReferenceMapModel::set_initial_condition(SolidBody& body) {
@@ -87,7 +104,8 @@ void ReferenceMapModel::advance_substep(SolidBody& body, const kernels::Velocity
   kernels::classify_solid(level_, q_, shape_, centres_, kSolidReach, false, grid_.h, box);
   bc_->fill_scalar(level_);
   extrapolate(box);
-  for (int c = 0; c < kernels::kTensorComponents; ++c) Kokkos::deep_copy(body.b_prev.c[c], body.b.c[c]);
+  // B before the substep, ghosts included (the elastic force reads them); beyond, both are I
+  copy_tensor(body.b_prev, body.b, grown_into_ghosts(box));
   derive_solid(body, box);
   if (correct_volume_) correct_volume(body, box);
   update_active_box();
@@ -115,7 +133,7 @@ void ReferenceMapModel::extrapolate(const Box& region) {
 }
 
 void ReferenceMapModel::derive_solid(SolidBody& body, const Box& region) {
-  kernels::solid_from_map(body.psi, body.b, q_, level_, shape_, centres_, eps_, kMaxDerivedLevel, grid_.h, region);
+  kernels::solid_from_map(body.psi, body.b, q_, level_, shape_, centres_, kHalfWidthCells, kMaxDerivedLevel, grid_.h, region);
   bc_->fill_scalar(body.psi);
   for (int c = 0; c < kernels::kTensorComponents; ++c) bc_->fill_scalar(body.b.c[c]);
 }

@@ -2,7 +2,8 @@
 // The reference-map solid model (Kamrin, Rycroft & Nave 2012; Rycroft et al. 2020): the body
 // carries the reference displacement q = xi - x (kernels/reference_map.hpp), advected with WENO5;
 // outside the body q is extrapolated by least squares over a band as wide as the stencils read;
-// psi is a smoothed Heaviside of the distance phi0(xi) / |grad phi0(xi)| (half-width 1.5 h), and
+// psi is a smoothed Heaviside of the distance phi0(xi) / |grad phi0(xi)| (half-width 1.5 cells along
+// the normal), and
 // B = F F^T with F = (grad xi)^-1. A rigid motion keeps q linear, which WENO5 and the
 // extrapolation carry exactly, so a rotating body keeps its shape at 8 cells per diameter.
 // The level of phi0 is shifted to give psi the reference shape's exact volume at t = 0 and to
@@ -48,7 +49,6 @@ class ReferenceMapModel final : public SolidModel {
   // included, so a body about to cross into this rank's slab is seen) grown by two cells. Every
   // kernel runs on it; outside it q is not used, psi = 0 and B = I.
   Box active_;
-  double eps_;
   double volume0_ = 0.0;
   bool correct_volume_ = true;
 };

@@ -141,6 +141,41 @@ TEST(ShearParticle, DISABLED_DeformationBecomesSteady) {
   EXPECT_NEAR((M_PI / 4 - b.angle) / ((3.0 + 2.0 * b.lambda) * b.Ca / 4.0), 1.0, 0.35);
 }
 
+// The reference map (solid.model = "reference-map") on the same case and grid. Its psi is derived
+// from the carried reference map, so tank-treading does not smear it: the error budget above
+// loses its transport part. Budget relative to theory at Ca = 0.1: theory remainder 3.1 % (the
+// known tilt term; doubled for neo-Hookean terms: 6.25 % is the bound, the measured value is what
+// the issue's 5 % reflects), confinement and images 3 %, inertia 1 %; the issue asks for D within
+// 5 % and the inclination within 0.03 rad of 0.660 (0.03 = the O(Ca^3) remainder, (3+2 lambda)^3
+// Ca^3 / 48 ~ 3e-3, plus the 3 % confinement on the tilt 0.125: 4e-3, plus discretisation).
+// Steadiness: D at strain 4 within 2 % of D at strain 3 (the transient, exp(-3 / 0.25) = 6e-6, is
+// gone; the issue's strain 10 against 3 was measured with `eulerfsi run`, docs/REFERENCE_MAP.md).
+TEST(ShearParticle, ReferenceMapMatchesTheoryAndStaysSteady) {
+  ASSERT_FALSE(case_file().empty()) << "EULERFSI_TEST_DATA is not set (CTest sets it to the tests/ directory)";
+  const ShearResult r = run_shear({"solid[0].model = \"reference-map\"", "time.t_end = 4.0"}, 3.0);
+  report("reference map, Ca = 0.1, strains [3, 4]", r);
+  const double d_th = 1.25 * r.Ca, a_th = M_PI / 4 - (3.0 + 2.0 * r.lambda) * r.Ca / 4.0;
+  EXPECT_NEAR(r.D / d_th, 1.0, 0.05);
+  EXPECT_NEAR(r.angle, a_th, 0.03);
+  EXPECT_LT(std::fabs(r.D_end - r.D_start) / r.D, 0.02);
+  // the level shift keeps the volume: one Newton step per substep
+  EXPECT_NEAR(r.volume / r.volume0, 1.0, 1e-6);
+}
+
+// A stiff particle, Ca = 0.0125 (We = 0.1): theory D = 0.0156, inclination 0.770. The paper model
+// reads D 0.0175 at strain 1, rising, with the axis past pi/4 (docs/STATUS.md). Bounds from the
+// issue: D within 20 % (at 8 cells per diameter D = 0.0156 is a 1.2 % elongation, 0.05 cells of
+// the radius: the smoothed edge's sampling error is of that order), inclination within 0.05 rad.
+// tau = 2.5 Ca = 0.031 strain: strains [1, 1.5] are far past the transient.
+TEST(ShearParticle, ReferenceMapStiffParticle) {
+  ASSERT_FALSE(case_file().empty()) << "EULERFSI_TEST_DATA is not set (CTest sets it to the tests/ directory)";
+  const ShearResult r = run_shear({"solid[0].model = \"reference-map\"", "solid[0].We = 0.1"}, 1.0);
+  report("reference map, Ca = 0.0125, strains [1, 1.5]", r);
+  const double d_th = 1.25 * r.Ca, a_th = M_PI / 4 - (3.0 + 2.0 * r.lambda) * r.Ca / 4.0;
+  EXPECT_NEAR(r.D / d_th, 1.0, 0.20);
+  EXPECT_NEAR(r.angle, a_th, 0.05);
+}
+
 // An unstrained particle (B = I) in fluid at rest: every force is zero, so u must stay zero to
 // round-off and psi must not move.
 TEST(ShearParticle, UnstrainedParticleInFluidAtRestStaysAtRest) {
