@@ -221,10 +221,12 @@ double FlowSolver::correct_flow_rate() {
 // Q / A in the grid's frame: Q = sum over the faces inside the pipe of (u - u_wall) dA, plus
 // u_wall A. The velocity relative to the wall (-frame_u) is what the quadrature integrates to
 // second order (it vanishes on the circle), and the same in every frame.
-double FlowSolver::bulk_velocity() const {
+double FlowSolver::bulk_velocity() const { return lab_bulk_velocity() - frame_u_; }
+
+double FlowSolver::lab_bulk_velocity() const {
   const double sum = comm_.sum(kernels::open_face_sum(state_.vel.c[0], masks_.outside_u, grid_.interior()));
-  if (flow_faces_ == inside_faces_) return sum / inside_faces_;
-  return (sum + frame_u_ * inside_faces_) / flow_faces_ - frame_u_;
+  if (flow_faces_ == inside_faces_) return sum / inside_faces_ + frame_u_;
+  return (sum + frame_u_ * inside_faces_) / flow_faces_;
 }
 
 FlowDiagnostics FlowSolver::diagnostics(double dt, double wave_speed) const {
@@ -232,7 +234,7 @@ FlowDiagnostics FlowSolver::diagnostics(double dt, double wave_speed) const {
   const auto& u = state_.vel.c;
   FlowDiagnostics d;
   d.cfl = dt * comm_.max(kernels::max_signal_rate(u[0], u[1], u[2], grid_.h, wave_speed, box));
-  d.bulk_u = bulk_velocity() + frame_u_;
+  d.bulk_u = lab_bulk_velocity();
   d.dpdx = dpdx_;
   d.max_div = comm_.max(kernels::max_abs_divergence(u[0], u[1], u[2], grid_.h, box));
   d.kinetic_energy = comm_.sum(kernels::kinetic_energy_sum(u[0], u[1], u[2], box, frame_u_)) / double(grid_.global_cells());

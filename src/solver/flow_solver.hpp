@@ -52,8 +52,9 @@ class FlowSolver {
   double dpdx() const { return dpdx_; }
   void set_dpdx(double v) { dpdx_ = v; }
   bool has_flow_rate() const { return impose_flow_rate_; }
-  // bulk velocity over the open cross-section, in the grid's frame
+  // bulk velocity over the open cross-section, in the grid's frame and in the laboratory
   double bulk_velocity() const;
+  double lab_bulk_velocity() const;
 
   // The grid's frame moves along x with frame_velocity(); the state holds u - frame_velocity.
   // Changing it shifts u (a Galilean transformation: the laboratory flow is unchanged).
