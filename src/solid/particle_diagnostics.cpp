@@ -155,7 +155,9 @@ std::vector<ParticleState> ParticleTracker::measure(const SolidPhase& solids, co
     // a major axis along the radial direction is +pi/2 however round-off tilts it
     if (angle <= -M_PI / 2 + 1e-9) angle += M_PI;
     s.angle = angle;
-    auto forces = kernels::body_forces(body.psi, flow.p, flow.vel, body.b, body.G, body.mu_s, frame.velocity,
+    // both decompositions take the pressure that moved u over the last step (sum alpha_s p_s), not
+    // the last substep's, which extrapolates beyond the step
+    auto forces = kernels::body_forces(body.psi, flow.p_step, flow.vel, body.b, body.G, body.mu_s, frame.velocity,
                                        grid_.h, box);
     double f[12];
     for (int a = 0; a < 3; ++a) {
@@ -167,7 +169,6 @@ std::vector<ParticleState> ParticleTracker::measure(const SolidPhase& solids, co
     sum_all(comm_, f);
     for (int term = 0; term < 4; ++term)
       s.force_paper[term] = f[3 * term + 1] * s.radial_dir[1] + f[3 * term + 2] * s.radial_dir[2];
-    // the pressure that moved u over the last step, not the last substep's extrapolated one
     auto budget = kernels::body_momentum(body.psi, flow.p_step, flow.vel, body.b, body.b_prev, body.G, 1.0 / cfg_.flow.Re,
                                          body.mu_s, grid_.h, box);
     double g[15];

@@ -10,7 +10,7 @@
 //    carry an O(dt) error proportional to du/dt at fixed grid points, large where the particle
 //    sweeps through the grid (measured 12.8% at CFL 0.2, 6.5% at CFL 0.1): accepted below 20%.
 // The paper's eq. (force) (F_r_paper, int psi du_r/dt at fixed laboratory points) leaves out the
-// momentum the transport of psi carries, int u_r dpsi/dt ~ U_p omega V, here 20x F_r and of the
+// momentum the transport of psi carries, int u_r dpsi/dt ~ U_p omega V, here 30x F_r and of the
 // other sign: it points to the axis while the particle accelerates outwards.
 #include <gtest/gtest.h>
 
