@@ -26,6 +26,46 @@ FlowSolver::FlowSolver(const CaseConfig& cfg, const Grid& grid, const Comm& comm
 
 FlowSolver::~FlowSolver() = default;
 
+namespace {
+
+// The pipe's cross-section seen from one staggered location (sy, sz: 0.5 at a cell centre, 1 at a
+// face); storage indices beyond the array are allowed (only positions are computed there).
+struct PipeSection {
+  double lo[2], h[2], shift[2];
+  double r2 = 0.25;  // R^2
+  double pos(int j, int k, int d) const { return lo[d] + ((d == 0 ? j : k) - kGhost + shift[d]) * h[d]; }
+  bool inside(int j, int k) const {
+    const double y = pos(j, k, 0), z = pos(j, k, 1);
+    return y * y + z * z < r2;
+  }
+  // first fluid layer: inside, with a face neighbour outside
+  bool next_to_wall(int j, int k) const {
+    return inside(j, k) && (!inside(j + 1, k) || !inside(j - 1, k) || !inside(j, k + 1) || !inside(j, k - 1));
+  }
+  // The interpolated wall at a first-layer point: along each grid line that leaves the pipe within
+  // one cell, the wall is at distance t = sqrt(R^2 - other^2) - s x; the nearest crossing whose
+  // inner neighbour is free (not itself on the layer) gives w = t / (t + h) and the neighbour's
+  // offset. False where there is none (the tips where the pipe touches the duct): left unforced.
+  bool forcing(int j, int k, double& w, int off[2]) const {
+    double best_t = 1e300;
+    for (int d = 0; d < 2; ++d)
+      for (int s = -1; s <= 1; s += 2) {
+        const int dj = d == 0 ? s : 0, dk = d == 1 ? s : 0;
+        if (inside(j + dj, k + dk) || !inside(j - dj, k - dk) || next_to_wall(j - dj, k - dk)) continue;
+        const double other = pos(j, k, 1 - d);
+        const double t = std::sqrt(r2 - other * other) - s * pos(j, k, d);
+        if (t >= best_t) continue;
+        best_t = t;
+        w = t / (t + h[d]);
+        off[0] = -dj;
+        off[1] = -dk;
+      }
+    return best_t < 1e300;
+  }
+};
+
+}  // namespace
+
 // chi = 1 outside the pipe (r >= R = 1/2) at each component's own staggered point; with the
 // interpolated wall also on the first fluid layer, with its interpolation weight and neighbour.
 // Built on the host once (the wall never moves), then copied to the device.
@@ -34,22 +74,10 @@ void FlowSolver::build_wall_masks() {
   if (cfg_.domain.geometry != Geometry::Pipe) return;
   const bool interpolated = cfg_.flow.pipe_wall == PipeWall::Interpolated;
   const int e1 = grid_.ext(1), e2 = grid_.ext(2);
-  const double h[2] = {grid_.h[1], grid_.h[2]};
-  const double r2_wall = 0.25;
   for (int c = 0; c < 3; ++c) {
-    const double sy = c == 1 ? 1.0 : 0.5, sz = c == 2 ? 1.0 : 0.5;  // face or centre offset
-    // position of storage index (j, k), also beyond the array (never read there)
-    auto pos = [&](int j, int k, int d) {
-      return d == 0 ? grid_.domain_lo(1) + (j - kGhost + sy) * h[0] : grid_.domain_lo(2) + (k - kGhost + sz) * h[1];
-    };
-    auto inside = [&](int j, int k) {
-      const double y = pos(j, k, 0), z = pos(j, k, 1);
-      return y * y + z * z < r2_wall;
-    };
-    // first fluid layer: inside, with a face neighbour outside
-    auto next_to_wall = [&](int j, int k) {
-      return inside(j, k) && (!inside(j + 1, k) || !inside(j - 1, k) || !inside(j, k + 1) || !inside(j, k - 1));
-    };
+    const PipeSection pipe{{grid_.domain_lo(1), grid_.domain_lo(2)},
+                           {grid_.h[1], grid_.h[2]},
+                           {c == 1 ? 1.0 : 0.5, c == 2 ? 1.0 : 0.5}};
     kernels::Mask2 chi("chi", e1, e2), weight("wall_weight", e1, e2);
     kernels::Offset2 nb("wall_neighbour", e1, e2);
     auto chi_h = Kokkos::create_mirror_view(chi);
@@ -57,29 +85,13 @@ void FlowSolver::build_wall_masks() {
     auto nb_h = Kokkos::create_mirror_view(nb);
     for (int j = 0; j < e1; ++j)
       for (int k = 0; k < e2; ++k) {
-        chi_h(j, k) = inside(j, k) ? 0.0 : 1.0;
-        w_h(j, k) = 0.0;
-        nb_h(j, k, 0) = nb_h(j, k, 1) = 0;
-        if (!interpolated || !next_to_wall(j, k)) continue;
-        // along each grid line that leaves the pipe within one cell, the wall is at distance
-        // t = sqrt(R^2 - other^2) - s x; keep the nearest crossing whose inner neighbour is free
-        double best_t = 1e300;
-        for (int d = 0; d < 2; ++d)
-          for (int s = -1; s <= 1; s += 2) {
-            const int dj = d == 0 ? s : 0, dk = d == 1 ? s : 0;
-            if (inside(j + dj, k + dk)) continue;
-            if (!inside(j - dj, k - dk) || next_to_wall(j - dj, k - dk)) continue;
-            const double other = pos(j, k, 1 - d);
-            const double t = std::sqrt(r2_wall - other * other) - s * pos(j, k, d);
-            if (t < best_t) {
-              best_t = t;
-              chi_h(j, k) = 1.0;
-              w_h(j, k) = t / (t + h[d]);
-              nb_h(j, k, 0) = -dj;
-              nb_h(j, k, 1) = -dk;
-            }
-          }
-        // no free inner neighbour (the tips where the pipe touches the duct): left unforced
+        double w = 0.0;
+        int off[2] = {0, 0};
+        const bool forced = interpolated && pipe.next_to_wall(j, k) && pipe.forcing(j, k, w, off);
+        chi_h(j, k) = forced || !pipe.inside(j, k) ? 1.0 : 0.0;
+        w_h(j, k) = w;
+        nb_h(j, k, 0) = off[0];
+        nb_h(j, k, 1) = off[1];
       }
     Kokkos::deep_copy(chi, chi_h);
     Kokkos::deep_copy(weight, w_h);
@@ -97,7 +109,7 @@ void FlowSolver::build_wall_masks() {
     double in = 0.0, moved = 0.0;
     for (int j = 0; j < e1; ++j)
       for (int k = 0; k < e2; ++k) {
-        out_h(j, k) = inside(j, k) ? 0.0 : 1.0;
+        out_h(j, k) = pipe.inside(j, k) ? 0.0 : 1.0;
         open_h(j, k) = 1.0 - chi_h(j, k) + chi_h(j, k) * w_h(j, k);
         if (j < b.lo[1] || j >= b.hi[1] || k < b.lo[2] || k >= b.hi[2]) continue;
         in += 1.0 - out_h(j, k);
@@ -111,7 +123,7 @@ void FlowSolver::build_wall_masks() {
     open_faces_ = moved * grid_.n[0];
     // the flow rate is over the true circle (second order) or over the staircase of open faces
     // (the sharp mask's own wall), in units of one face's area
-    flow_faces_ = interpolated ? grid_.n[0] * M_PI * r2_wall / (h[0] * h[1]) : inside_faces_;
+    flow_faces_ = interpolated ? grid_.n[0] * M_PI * pipe.r2 / (pipe.h[0] * pipe.h[1]) : inside_faces_;
   }
 }
 
