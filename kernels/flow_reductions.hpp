@@ -45,11 +45,11 @@ inline double open_face_sum(const Field3& u, const Mask2& chi_u, const Box& box)
   return s;
 }
 
-// u(i,j,k) += du on the open x-faces: x-independent, so div u is untouched
-inline void add_open_x_velocity(const Field3& u, const Mask2& chi_u, double du, const Box& box) {
-  const bool has_mask = chi_u.extent(0) > 0;
+// u(i,j,k) += du open(j,k) (du everywhere without a mask): x-independent, so div u is untouched
+inline void add_open_x_velocity(const Field3& u, const Mask2& open_u, double du, const Box& box) {
+  const bool has_mask = open_u.extent(0) > 0;
   for_each_cell("eulerfsi::flow_rate::correct", box, KOKKOS_LAMBDA(int i, int j, int k) {
-    u(i, j, k) += has_mask ? du * (1.0 - chi_u(j, k)) : du;
+    u(i, j, k) += has_mask ? du * open_u(j, k) : du;
   });
 }
 

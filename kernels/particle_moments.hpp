@@ -9,7 +9,9 @@
 #include "core/types.hpp"
 #include "kernels/momentum.hpp"
 #include "kernels/offsets.hpp"
+#include "kernels/elastic_force.hpp"
 #include "kernels/solid_fields.hpp"
+#include "kernels/solid_transport.hpp"
 
 namespace eulerfsi::kernels {
 
@@ -35,6 +37,17 @@ struct BodySecondMoments {
 struct BodyForces {
   enum { Count = 12 };
   double pressure[3], inertia[3], viscous[3], elastic[3];
+};
+// The body's momentum P = sum psi u_c dV and the forces that change it, each term as the solver
+// discretises it (grid frame; P and dP/dt are the same in the laboratory, x being periodic):
+//   dP/dt = sum psi du_c/dt + sum u_c dpsi/dt
+//   pressure = -sum psi grad p;  inertia = -sum psi div(u u) - sum u_c div^WENO(u psi);
+//   viscous = sum psi div(2 mu(psi) E), mu = mu_f + psi (mu_s - mu_f);
+//   elastic = sum psi div[psi G ((B + B_prev)/2 - I)]   (the stress of the last substep)
+// each face term averaged over the cell's two D-faces, as u_c is.
+struct BodyMomentum {
+  enum { Count = 15 };
+  double momentum[3], pressure[3], inertia[3], viscous[3], elastic[3];
 };
 
 namespace detail {
@@ -189,6 +202,77 @@ struct ForceTerm {
   }
 };
 
+// div(2 mu E)_D at the D-face with the mixture viscosity mu = mu_f + psi dmu at cell centres and
+// the four-cell average on edges: the viscous stencil of kernels/momentum.hpp.
+template <int D>
+KOKKOS_INLINE_FUNCTION double mixture_viscous_at_face(const Velocity& vel, const Field3& psi, double mu_f, double dmu,
+                                                      const double inv_h[3], int i, int j, int k) {
+  constexpr int E1 = (D + 1) % 3, E2 = (D + 2) % 3;
+  auto mu = [&](int a, int b, int c) { return mu_f + dmu * psi(a, b, c); };
+  auto mu_edge = [&](int E, int a, int b, int c) {
+    const int ei = E == 0, ej = E == 1, ek = E == 2;
+    constexpr int di = Unit<D>::i, dj = Unit<D>::j, dk = Unit<D>::k;
+    return 0.25 * (mu(a, b, c) + mu(a + di, b + dj, c + dk) + mu(a + ei, b + ej, c + ek) +
+                   mu(a + di + ei, b + dj + ej, c + dk + ek));
+  };
+  const Field3& uD = vel.c[D];
+  const double sp = 2.0 * mu(i + Unit<D>::i, j + Unit<D>::j, k + Unit<D>::k) *
+                    (shifted<D>(uD, i, j, k, 1) - uD(i, j, k)) * inv_h[D];
+  const double sm = 2.0 * mu(i, j, k) * (uD(i, j, k) - shifted<D>(uD, i, j, k, -1)) * inv_h[D];
+  constexpr int a1 = Unit<E1>::i, b1 = Unit<E1>::j, c1 = Unit<E1>::k;
+  constexpr int a2 = Unit<E2>::i, b2 = Unit<E2>::j, c2 = Unit<E2>::k;
+  return (sp - sm) * inv_h[D] +
+         (mu_edge(E1, i, j, k) * strain_edge<D, E1>(vel, inv_h, i, j, k) -
+          mu_edge(E1, i - a1, j - b1, k - c1) * strain_edge<D, E1>(vel, inv_h, i - a1, j - b1, k - c1)) *
+             inv_h[E1] +
+         (mu_edge(E2, i, j, k) * strain_edge<D, E2>(vel, inv_h, i, j, k) -
+          mu_edge(E2, i - a2, j - b2, k - c2) * strain_edge<D, E2>(vel, inv_h, i - a2, j - b2, k - c2)) *
+             inv_h[E2];
+}
+
+// One term of BodyMomentum in direction D at cell (i,j,k), psi weight included.
+template <int D>
+KOKKOS_INLINE_FUNCTION double momentum_term(int term, const Field3& psi, const Field3& p, const Velocity& vel,
+                                            const Tensor6& b, const Tensor6& bp, double G, double mu_f, double dmu,
+                                            const double inv_h[3], int i, int j, int k) {
+  constexpr int di = Unit<D>::i, dj = Unit<D>::j, dk = Unit<D>::k;
+  const double w = psi(i, j, k);
+  const double uc = 0.5 * (vel.c[D](i, j, k) + vel.c[D](i - di, j - dj, k - dk));
+  switch (term) {
+    case 0: return w * uc;
+    case 1: return w * force_term<D>(0, p, vel, b, G, 0.0, 0.0, inv_h, i, j, k);
+    case 2: {
+      // the transport of psi carries momentum in and out: u_c dpsi/dt, with the solver's fluxes
+      const double dpsi = star_max(psi, i, j, k) == 0.0 ? 0.0 : -weno_divergence(psi, vel.c[0], vel.c[1], vel.c[2], inv_h, i, j, k);
+      return (w == 0.0 ? 0.0 : w * force_term<D>(1, p, vel, b, G, 0.0, 0.0, inv_h, i, j, k)) + uc * dpsi;
+    }
+    case 3:
+      return w == 0.0 ? 0.0
+                      : 0.5 * w *
+                            (mixture_viscous_at_face<D>(vel, psi, mu_f, dmu, inv_h, i, j, k) +
+                             mixture_viscous_at_face<D>(vel, psi, mu_f, dmu, inv_h, i - di, j - dj, k - dk));
+    default:
+      return w == 0.0 ? 0.0
+                      : 0.5 * w *
+                            (elastic_force_at_face<D>(psi, b, bp, G, inv_h, i, j, k) +
+                             elastic_force_at_face<D>(psi, b, bp, G, inv_h, i - di, j - dj, k - dk));
+  }
+}
+
+struct MomentumTerm {
+  Field3 psi, p;
+  Velocity vel;
+  Tensor6 b, bp;
+  double G, mu_f, dmu;
+  double inv_h[3];
+  int term, dir;
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k, double& acc) const {
+    acc += dir == 0   ? momentum_term<0>(term, psi, p, vel, b, bp, G, mu_f, dmu, inv_h, i, j, k)
+           : dir == 1 ? momentum_term<1>(term, psi, p, vel, b, bp, G, mu_f, dmu, inv_h, i, j, k)
+                      : momentum_term<2>(term, psi, p, vel, b, bp, G, mu_f, dmu, inv_h, i, j, k);
+  }
+};
+
 }  // namespace detail
 
 // First moments of psi over `box` (owned cells), each times dV. Lx: periodic length in x. Cells
@@ -238,6 +322,23 @@ inline BodyForces body_forces(const Field3& psi, const Field3& p, const Velocity
     for (int d = 0; d < 3; ++d) {
       detail::ForceTerm f{psi, p, vel, b, G, mu_s, u_frame, {1.0 / h[0], 1.0 / h[1], 1.0 / h[2]}, term, d};
       out[term][d] = dv * detail::sum_over("eulerfsi::diag::body_forces", box, f);
+    }
+  return r;
+}
+
+// The body's momentum and the forces that change it (BodyMomentum), in the grid's frame; needs
+// three ghost layers of psi (WENO) and one of p, u, B.
+inline BodyMomentum body_momentum(const Field3& psi, const Field3& p, const Velocity& vel, const Tensor6& b,
+                                  const Tensor6& b_prev, double G, double mu_f, double mu_s, const double h[3],
+                                  const Box& box) {
+  const double dv = h[0] * h[1] * h[2];
+  BodyMomentum r{};
+  double* out[5] = {r.momentum, r.pressure, r.inertia, r.viscous, r.elastic};
+  for (int term = 0; term < 5; ++term)
+    for (int d = 0; d < 3; ++d) {
+      detail::MomentumTerm f{psi, p, vel, b, b_prev, G, mu_f, mu_s - mu_f, {1.0 / h[0], 1.0 / h[1], 1.0 / h[2]},
+                             term, d};
+      out[term][d] = dv * detail::sum_over("eulerfsi::diag::body_momentum", box, f);
     }
   return r;
 }

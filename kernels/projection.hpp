@@ -28,4 +28,12 @@ inline void subtract_gradient(const Field3& u, const Field3& v, const Field3& w,
   });
 }
 
+// The step's mean pressure: p_step = sum over substeps of alpha_s p_s (sum alpha_s = 1), so that
+// the step's projections moved u by -dt grad p_step. first: the first substep starts the sum.
+inline void accumulate_step_pressure(const Field3& p_step, const Field3& p, double alpha, bool first, const Box& box) {
+  for_each_cell("eulerfsi::projection::step_pressure", box, KOKKOS_LAMBDA(int i, int j, int k) {
+    p_step(i, j, k) = (first ? 0.0 : p_step(i, j, k)) + alpha * p(i, j, k);
+  });
+}
+
 }  // namespace eulerfsi::kernels

@@ -29,7 +29,8 @@ struct Section {
 const std::vector<Section>& schema() {
   static const std::vector<Section> s{
       {"domain", {"length", "cells", "geometry"}},
-      {"flow", {"Re", "bulk_velocity", "wall_velocity", "wall_frequency", "initial", "penalization_eta", "frame_velocity"}},
+      {"flow", {"Re", "bulk_velocity", "wall_velocity", "wall_frequency", "initial", "penalization_eta", "pipe_wall",
+                "frame_velocity"}},
       {"time", {"cfl", "dt", "t_end", "max_steps"}},
       {"output", {"dir", "every", "fields_every", "profiles_every", "checkpoint_every", "shape_times"}},
       {"solid", {"shape", "diameter", "center", "thickness", "We", "viscosity_ratio", "initial_velocity", "sharpening", "model"}},
@@ -51,6 +52,8 @@ const std::vector<std::pair<const char*, Geometry>> kGeometries{{"pipe", Geometr
                                                                 {"periodic", Geometry::Periodic}};
 const std::vector<std::pair<const char*, InitialFlow>> kInitialFlows{
     {"laminar", InitialFlow::Laminar}, {"rest", InitialFlow::Rest}, {"taylor-green", InitialFlow::TaylorGreen}};
+const std::vector<std::pair<const char*, PipeWall>> kPipeWalls{{"sharp", PipeWall::Sharp},
+                                                               {"interpolated", PipeWall::Interpolated}};
 const std::vector<std::pair<const char*, SolidShape>> kShapes{{"sphere", SolidShape::Sphere},
                                                               {"layer", SolidShape::Layer}};
 const std::vector<std::pair<const char*, InitialSolidVelocity>> kSolidVelocities{
@@ -484,6 +487,9 @@ void read_flow(const Reader& r, const toml::table& root, const DomainConfig& d, 
     r.fail("flow.initial", init_key + ": \"taylor-green\" needs domain.geometry = \"periodic\", not " + geo);
   r.get(t, "flow", "penalization_eta", f.penalization_eta);
   r.require(f.penalization_eta > 0, t, "flow", "penalization_eta", "must be > 0");
+  if (r.get(t, "flow", "pipe_wall", f.pipe_wall, kPipeWalls) && d.geometry != Geometry::Pipe)
+    r.fail_value("flow.pipe_wall", *t->get("pipe_wall"),
+                 "only domain.geometry = \"pipe\" has a penalized wall, not " + geo);
   if (const toml::node* n = t ? t->get("frame_velocity") : nullptr) {
     if (const auto* s = n->as_string()) {
       if (s->get() != "particle")
@@ -659,6 +665,7 @@ CaseConfig validate(const toml::table& root, const Reader& r) {
 
 const char* to_string(Geometry g) { return spelling(kGeometries, g); }
 const char* to_string(InitialFlow f) { return spelling(kInitialFlows, f); }
+const char* to_string(PipeWall w) { return spelling(kPipeWalls, w); }
 const char* to_string(SolidShape s) { return spelling(kShapes, s); }
 const char* to_string(InitialSolidVelocity v) { return spelling(kSolidVelocities, v); }
 const char* to_string(SolidModelKind m) { return spelling(kSolidModels, m); }
@@ -711,8 +718,9 @@ std::string to_toml(const CaseConfig& c) {
   os << "wall_velocity = " << arr(c.flow.wall_velocity) << "\n"
      << "wall_frequency = " << fmt_double(c.flow.wall_frequency) << "\n"
      << "initial = " << toml_str(to_string(c.flow.initial)) << "\n"
-     << "penalization_eta = " << fmt_double(c.flow.penalization_eta) << "\n"
-     << "frame_velocity = " << (c.flow.frame_follows_particle ? std::string("\"particle\"") : fmt_double(c.flow.frame_velocity))
+     << "penalization_eta = " << fmt_double(c.flow.penalization_eta) << "\n";
+  if (c.domain.geometry == Geometry::Pipe) os << "pipe_wall = " << toml_str(to_string(c.flow.pipe_wall)) << "\n";
+  os << "frame_velocity = " << (c.flow.frame_follows_particle ? std::string("\"particle\"") : fmt_double(c.flow.frame_velocity))
      << "\n";
   os << "\n[time]\n"
      << "cfl = " << fmt_double(c.time.cfl) << "\n"

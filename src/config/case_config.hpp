@@ -16,6 +16,9 @@ struct ConfigError : std::runtime_error {
 
 enum class Geometry { Pipe, Duct, Channel, Couette, Periodic };
 enum class InitialFlow { Laminar, Rest, TaylorGreen };
+// Sharp: the paper's staircase mask (first order); Interpolated: the first fluid layer is forced
+// to the linear interpolation between the wall and the next fluid point (second order).
+enum class PipeWall { Sharp, Interpolated };
 
 struct DomainConfig {
   std::array<double, 3> length{3.0, 1.0, 1.0};
@@ -30,6 +33,7 @@ struct FlowConfig {
   double wall_frequency = 0.0;               // > 0: wall velocity times sin(wall_frequency t)
   InitialFlow initial = InitialFlow::Laminar;
   double penalization_eta = 1e-8;            // volume penalization permeability (pipe)
+  PipeWall pipe_wall = PipeWall::Interpolated;
   // The grid moves along x with this velocity (a Galilean frame; walls are x-uniform, x periodic):
   // a particle that travels with the frame crosses no cells, so WENO does not smear its edge.
   // Numerics only: every output is in the laboratory frame.
@@ -95,6 +99,7 @@ CaseConfig parse_case_string(const std::string& toml_text, const std::vector<std
 std::string to_toml(const CaseConfig& cfg);
 
 const char* to_string(Geometry g);
+const char* to_string(PipeWall w);
 const char* to_string(InitialFlow f);
 const char* to_string(SolidShape s);
 const char* to_string(InitialSolidVelocity v);

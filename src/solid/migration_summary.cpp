@@ -84,6 +84,7 @@ void write_summary_json(const std::string& particle_csv, const std::string& json
   {
     std::ofstream out(tmp);
     out << "{\n  \"t_cen_threshold\": " << format_number(kCentreThreshold) << ",\n"
+        << "  \"t_rev_definition\": \"first sign change of F_r, the force that changes the radial momentum P_r\",\n"
         << "  \"t_cen_definition\": \"first time r/R < t_cen_threshold holding to the end of the run\",\n"
         << "  \"T_osc_definition\": \"mean spacing of r/R maxima over [0, t_cen/2] (or [0, t_end/2])\",\n"
         << "  \"solids\": [\n";

@@ -1,6 +1,7 @@
 #pragma once
 // The per-run numbers of the paper, from a particle's time series r/R(t) and F_r(t):
-//  - t_rev: first sign change of the total radial force F_r (linear interpolation between rows);
+//  - t_rev: first sign change of the radial force F_r, the force that changes the particle's
+//    radial momentum (particle.csv's F_r, not the paper's sum F_r_paper; linear interpolation);
 //  - t_cen: first time r/R falls below `centre_threshold` and stays below to the end of the run;
 //  - T_osc: mean spacing of successive local maxima of r/R over the first half of the
 //    migration, [0, t_cen / 2] (or [0, t_end / 2] when the axis was not reached);

@@ -155,7 +155,9 @@ std::vector<ParticleState> ParticleTracker::measure(const SolidPhase& solids, co
     // a major axis along the radial direction is +pi/2 however round-off tilts it
     if (angle <= -M_PI / 2 + 1e-9) angle += M_PI;
     s.angle = angle;
-    auto forces = kernels::body_forces(body.psi, flow.p, flow.vel, body.b, body.G, body.mu_s, frame.velocity,
+    // both decompositions take the pressure that moved u over the last step (sum alpha_s p_s), not
+    // the last substep's, which extrapolates beyond the step
+    auto forces = kernels::body_forces(body.psi, flow.p_step, flow.vel, body.b, body.G, body.mu_s, frame.velocity,
                                        grid_.h, box);
     double f[12];
     for (int a = 0; a < 3; ++a) {
@@ -166,7 +168,17 @@ std::vector<ParticleState> ParticleTracker::measure(const SolidPhase& solids, co
     }
     sum_all(comm_, f);
     for (int term = 0; term < 4; ++term)
-      s.force[term] = f[3 * term + 1] * s.radial_dir[1] + f[3 * term + 2] * s.radial_dir[2];
+      s.force_paper[term] = f[3 * term + 1] * s.radial_dir[1] + f[3 * term + 2] * s.radial_dir[2];
+    auto budget = kernels::body_momentum(body.psi, flow.p_step, flow.vel, body.b, body.b_prev, body.G, 1.0 / cfg_.flow.Re,
+                                         body.mu_s, grid_.h, box);
+    double g[15];
+    double* parts[5] = {budget.momentum, budget.pressure, budget.inertia, budget.viscous, budget.elastic};
+    for (int q = 0; q < 5; ++q)
+      for (int a = 0; a < 3; ++a) g[3 * q + a] = parts[q][a];
+    sum_all(comm_, g);
+    auto radial = [&](int q) { return g[3 * q + 1] * s.radial_dir[1] + g[3 * q + 2] * s.radial_dir[2]; };
+    s.momentum_r = radial(0);
+    for (int term = 0; term < 4; ++term) s.force[term] = radial(term + 1);
     out.push_back(s);
   }
   return out;
@@ -175,14 +187,16 @@ std::vector<ParticleState> ParticleTracker::measure(const SolidPhase& solids, co
 const std::vector<std::string>& particle_columns() {
   static const std::vector<std::string> cols = {
       "step", "t", "solid", "xc", "yc", "zc", "r_over_R", "up", "vp", "wp", "volume", "taylor_D", "angle",
-      "F_r", "F_r_pressure", "F_r_inertia", "F_r_viscous", "F_r_elastic"};
+      "F_r", "F_r_pressure", "F_r_inertia", "F_r_viscous", "F_r_elastic", "P_r",
+      "F_r_paper", "F_r_paper_inertia", "F_r_paper_viscous", "F_r_paper_elastic"};
   return cols;
 }
 
 std::vector<double> particle_row(long step, double t, int body, const ParticleState& s) {
   return {double(step), t, double(body), s.centre[0], s.centre[1], s.centre[2], s.r_over_R, s.velocity[0],
           s.velocity[1], s.velocity[2], s.volume, s.taylor_D, s.angle, s.force_total(), s.force[0], s.force[1],
-          s.force[2], s.force[3]};
+          s.force[2], s.force[3], s.momentum_r, s.force_paper_total(), s.force_paper[1], s.force_paper[2],
+          s.force_paper[3]};
 }
 
 }  // namespace eulerfsi

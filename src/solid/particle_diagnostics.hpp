@@ -21,8 +21,16 @@ struct ParticleState {
   double angle = 0.0;            // major axis against x, in the plane of x and the radial direction [rad]
   double semi_axes[3] = {0, 0, 0};
   double radial_dir[3] = {0, 1, 0};
-  double force[4] = {0, 0, 0, 0};  // radial: pressure, inertia, viscous, elastic
+  // Radial force that changes the radial momentum P_r = int psi u . e_r (e_r at this instant):
+  // pressure, inertia (with the momentum psi's transport carries, int u_r dpsi/dt), viscous
+  // (mixture viscosity), elastic (the solver's stress divergence, interface included).
+  double force[4] = {0, 0, 0, 0};
+  double momentum_r = 0.0;
+  // The paper's eq. (force): pressure (as above), -int psi div(u u) at fixed laboratory points,
+  // int psi mu_s div(2E), int psi G div B; their sum is int psi du_r/dt, not dP_r/dt.
+  double force_paper[4] = {0, 0, 0, 0};
   double force_total() const { return force[0] + force[1] + force[2] + force[3]; }
+  double force_paper_total() const { return force_paper[0] + force_paper[1] + force_paper[2] + force_paper[3]; }
 };
 
 // The grid's frame in the laboratory: it moves along x with `velocity` and has moved by `offset`.

@@ -21,35 +21,108 @@ FlowSolver::FlowSolver(const CaseConfig& cfg, const Grid& grid, const Comm& comm
   impose_flow_rate_ = geo == Geometry::Pipe || geo == Geometry::Duct || geo == Geometry::Channel;
   Kokkos::deep_copy(mu_, mu_fluid_);
   build_wall_masks();
-  // the open cross-section never changes: count its x-faces once
-  open_faces_ = double(grid.global_cells());
-  if (masks_.chi[0].extent(0) > 0) {
-    // the mask is x-independent: open faces = Nx times the open (j, k) of the cross-section
-    auto chi = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), masks_.chi[0]);
-    const Box b = grid.interior();
-    double open = 0.0;
-    for (int j = b.lo[1]; j < b.hi[1]; ++j)
-      for (int k = b.lo[2]; k < b.hi[2]; ++k) open += 1.0 - chi(j, k);
-    open_faces_ = open * grid.n[0];
-  }
 }
 
 FlowSolver::~FlowSolver() = default;
 
-// chi = 1 outside the pipe (r >= R = 1/2) at each component's own staggered point.
+namespace {
+
+// The pipe's cross-section seen from one staggered location (sy, sz: 0.5 at a cell centre, 1 at a
+// face); storage indices beyond the array are allowed (only positions are computed there).
+struct PipeSection {
+  double lo[2], h[2], shift[2];
+  double r2 = 0.25;  // R^2
+  double pos(int j, int k, int d) const { return lo[d] + ((d == 0 ? j : k) - kGhost + shift[d]) * h[d]; }
+  bool inside(int j, int k) const {
+    const double y = pos(j, k, 0), z = pos(j, k, 1);
+    return y * y + z * z < r2;
+  }
+  // first fluid layer: inside, with a face neighbour outside
+  bool next_to_wall(int j, int k) const {
+    return inside(j, k) && (!inside(j + 1, k) || !inside(j - 1, k) || !inside(j, k + 1) || !inside(j, k - 1));
+  }
+  // The interpolated wall at a first-layer point: along each grid line that leaves the pipe within
+  // one cell, the wall is at distance t = sqrt(R^2 - other^2) - s x; the nearest crossing whose
+  // inner neighbour is free (not itself on the layer) gives w = t / (t + h) and the neighbour's
+  // offset. False where there is none (the tips where the pipe touches the duct): left unforced.
+  bool forcing(int j, int k, double& w, int off[2]) const {
+    double best_t = 1e300;
+    for (int d = 0; d < 2; ++d)
+      for (int s = -1; s <= 1; s += 2) {
+        const int dj = d == 0 ? s : 0, dk = d == 1 ? s : 0;
+        if (inside(j + dj, k + dk) || !inside(j - dj, k - dk) || next_to_wall(j - dj, k - dk)) continue;
+        const double other = pos(j, k, 1 - d);
+        const double t = std::sqrt(r2 - other * other) - s * pos(j, k, d);
+        if (t >= best_t) continue;
+        best_t = t;
+        w = t / (t + h[d]);
+        off[0] = -dj;
+        off[1] = -dk;
+      }
+    return best_t < 1e300;
+  }
+};
+
+}  // namespace
+
+// chi = 1 outside the pipe (r >= R = 1/2) at each component's own staggered point; with the
+// interpolated wall also on the first fluid layer, with its interpolation weight and neighbour.
+// Built on the host once (the wall never moves), then copied to the device.
 void FlowSolver::build_wall_masks() {
+  open_faces_ = inside_faces_ = flow_faces_ = double(grid_.global_cells());
   if (cfg_.domain.geometry != Geometry::Pipe) return;
+  const bool interpolated = cfg_.flow.pipe_wall == PipeWall::Interpolated;
   const int e1 = grid_.ext(1), e2 = grid_.ext(2);
-  const double y0 = grid_.domain_lo(1), z0 = grid_.domain_lo(2), dy = grid_.h[1], dz = grid_.h[2];
   for (int c = 0; c < 3; ++c) {
-    masks_.chi[c] = kernels::Mask2("chi", e1, e2);
-    auto chi = masks_.chi[c];
-    const double sy = c == 1 ? 1.0 : 0.5, sz = c == 2 ? 1.0 : 0.5;  // face or centre offset
-    Kokkos::parallel_for("eulerfsi::penalization::mask", Policy2({0, 0}, {e1, e2}), KOKKOS_LAMBDA(int j, int k) {
-      const double y = y0 + (j - kGhost + sy) * dy;
-      const double z = z0 + (k - kGhost + sz) * dz;
-      chi(j, k) = (y * y + z * z >= 0.25) ? 1.0 : 0.0;
-    });
+    const PipeSection pipe{{grid_.domain_lo(1), grid_.domain_lo(2)},
+                           {grid_.h[1], grid_.h[2]},
+                           {c == 1 ? 1.0 : 0.5, c == 2 ? 1.0 : 0.5}};
+    kernels::Mask2 chi("chi", e1, e2), weight("wall_weight", e1, e2);
+    kernels::Offset2 nb("wall_neighbour", e1, e2);
+    auto chi_h = Kokkos::create_mirror_view(chi);
+    auto w_h = Kokkos::create_mirror_view(weight);
+    auto nb_h = Kokkos::create_mirror_view(nb);
+    for (int j = 0; j < e1; ++j)
+      for (int k = 0; k < e2; ++k) {
+        double w = 0.0;
+        int off[2] = {0, 0};
+        const bool forced = interpolated && pipe.next_to_wall(j, k) && pipe.forcing(j, k, w, off);
+        chi_h(j, k) = forced || !pipe.inside(j, k) ? 1.0 : 0.0;
+        w_h(j, k) = w;
+        nb_h(j, k, 0) = off[0];
+        nb_h(j, k, 1) = off[1];
+      }
+    Kokkos::deep_copy(chi, chi_h);
+    Kokkos::deep_copy(weight, w_h);
+    Kokkos::deep_copy(nb, nb_h);
+    masks_.chi[c] = chi;
+    masks_.weight[c] = weight;
+    masks_.neighbour[c] = nb;
+    if (c != 0) continue;
+    // x-faces inside the pipe carry the flow rate. The correction du moves the open faces by du and
+    // the forced layer by w du, which keeps u_f = w u_nb + (1 - w) u_wall exact after it
+    kernels::Mask2 outside("outside_u", e1, e2), open("open_u", e1, e2);
+    auto out_h = Kokkos::create_mirror_view(outside);
+    auto open_h = Kokkos::create_mirror_view(open);
+    const Box b = grid_.interior();
+    double in = 0.0, moved = 0.0;
+    for (int j = 0; j < e1; ++j)
+      for (int k = 0; k < e2; ++k) {
+        out_h(j, k) = pipe.inside(j, k) ? 0.0 : 1.0;
+        open_h(j, k) = 1.0 - chi_h(j, k) + chi_h(j, k) * w_h(j, k);
+        if (j < b.lo[1] || j >= b.hi[1] || k < b.lo[2] || k >= b.hi[2]) continue;
+        in += 1.0 - out_h(j, k);
+        moved += open_h(j, k);
+      }
+    Kokkos::deep_copy(outside, out_h);
+    Kokkos::deep_copy(open, open_h);
+    masks_.outside_u = outside;
+    masks_.open_u = open;
+    inside_faces_ = in * grid_.n[0];
+    open_faces_ = moved * grid_.n[0];
+    // the flow rate is over the true circle (second order) or over the staircase of open faces
+    // (the sharp mask's own wall), in units of one face's area
+    flow_faces_ = interpolated ? grid_.n[0] * M_PI * pipe.r2 / (pipe.h[0] * pipe.h[1]) : inside_faces_;
   }
 }
 
@@ -99,15 +172,25 @@ void FlowSolver::advance(double t, double dt, SolidCoupling* solids) {
     // (iii) predictor with implicit penalization of the pipe wall
     const double penal = alpha_dt / cfg_.flow.penalization_eta;
     static const char* labels[3] = {"eulerfsi::rk3::update_u", "eulerfsi::rk3::update_v", "eulerfsi::rk3::update_w"};
+    static const char* wall_labels[3] = {"eulerfsi::penalization::wall_u", "eulerfsi::penalization::wall_v",
+                                         "eulerfsi::penalization::wall_w"};
+    const bool interpolated = cfg_.flow.pipe_wall == PipeWall::Interpolated && masks_.chi[0].extent(0) > 0;
     for (int c = 0; c < 3; ++c) {
       // the wall is at rest in the laboratory: u_wall = -frame_u in the grid's frame
-      kernels::rk3_update(vel.c[c], rhs_new_.c[c], rhs_old_.c[c], masks_.chi[c], dt, gamma, zeta, penal, box, labels[c],
-                          c == 0 ? -frame_u_ : 0.0);
+      const double u_wall = c == 0 ? -frame_u_ : 0.0;
+      kernels::rk3_update(vel.c[c], rhs_new_.c[c], rhs_old_.c[c], interpolated ? kernels::Mask2() : masks_.chi[c], dt,
+                          gamma, zeta, penal, box, labels[c], u_wall);
       std::swap(rhs_new_.c[c], rhs_old_.c[c]);
     }
+    // the interpolated wall reads the predicted velocity of its inner neighbours: a second pass
+    if (interpolated)
+      for (int c = 0; c < 3; ++c)
+        kernels::penalize_interpolated_wall(vel.c[c], masks_.chi[c], masks_.weight[c], masks_.neighbour[c], penal, box,
+                                            wall_labels[c], c == 0 ? -frame_u_ : 0.0);
     bc_.fill_velocity(vel, t_next);
     // (iv) projection
     project(alpha_dt);
+    kernels::accumulate_step_pressure(state_.p_step, state_.p, Rk3::alpha(s), s == 0, grid_.all());
     // (v) constant flow rate: the uniform correction is the mean pressure gradient times alpha dt
     if (impose_flow_rate_) dpdx_step -= correct_flow_rate() / dt;
     bc_.fill_velocity(vel, t_next);
@@ -136,17 +219,25 @@ void FlowSolver::project(double alpha_dt) {
   kernels::subtract_gradient(vel.c[0], vel.c[1], vel.c[2], state_.p, grid_.h, alpha_dt, box);
 }
 
-// Adds du to u on the open faces so the bulk velocity is U_b again (U_b - frame_u in the grid's
-// frame); returns du.
+// Adds du to u on the open faces (w du on the forced layer) so the bulk velocity is U_b again
+// (U_b - frame_u in the grid's frame); returns du, the mean pressure gradient times alpha dt.
 double FlowSolver::correct_flow_rate() {
   const double bulk = bulk_velocity();
-  const double du = cfg_.flow.bulk_velocity - frame_u_ - bulk;
-  kernels::add_open_x_velocity(state_.vel.c[0], masks_.chi[0], du, grid_.interior());
+  // du moves the flow rate by du times the open faces' (weighted) area
+  const double du = (cfg_.flow.bulk_velocity - frame_u_ - bulk) * (flow_faces_ / open_faces_);
+  kernels::add_open_x_velocity(state_.vel.c[0], masks_.open_u, du, grid_.interior());
   return du;
 }
 
-double FlowSolver::bulk_velocity() const {
-  return comm_.sum(kernels::open_face_sum(state_.vel.c[0], masks_.chi[0], grid_.interior())) / open_faces_;
+// Q / A in the grid's frame: Q = sum over the faces inside the pipe of (u - u_wall) dA, plus
+// u_wall A. The velocity relative to the wall (-frame_u) is what the quadrature integrates to
+// second order (it vanishes on the circle), and the same in every frame.
+double FlowSolver::bulk_velocity() const { return lab_bulk_velocity() - frame_u_; }
+
+double FlowSolver::lab_bulk_velocity() const {
+  const double sum = comm_.sum(kernels::open_face_sum(state_.vel.c[0], masks_.outside_u, grid_.interior()));
+  if (flow_faces_ == inside_faces_) return sum / inside_faces_ + frame_u_;
+  return (sum + frame_u_ * inside_faces_) / flow_faces_;
 }
 
 FlowDiagnostics FlowSolver::diagnostics(double dt, double wave_speed) const {
@@ -154,7 +245,7 @@ FlowDiagnostics FlowSolver::diagnostics(double dt, double wave_speed) const {
   const auto& u = state_.vel.c;
   FlowDiagnostics d;
   d.cfl = dt * comm_.max(kernels::max_signal_rate(u[0], u[1], u[2], grid_.h, wave_speed, box));
-  d.bulk_u = bulk_velocity() + frame_u_;
+  d.bulk_u = lab_bulk_velocity();
   d.dpdx = dpdx_;
   d.max_div = comm_.max(kernels::max_abs_divergence(u[0], u[1], u[2], grid_.h, box));
   d.kinetic_energy = comm_.sum(kernels::kinetic_energy_sum(u[0], u[1], u[2], box, frame_u_)) / double(grid_.global_cells());

@@ -46,8 +46,9 @@ class FlowSolver {
   double dpdx() const { return dpdx_; }
   void set_dpdx(double v) { dpdx_ = v; }
   bool has_flow_rate() const { return impose_flow_rate_; }
-  // bulk velocity over the open cross-section, in the grid's frame
+  // bulk velocity over the open cross-section, in the grid's frame and in the laboratory
   double bulk_velocity() const;
+  double lab_bulk_velocity() const;
 
   // The grid's frame moves along x with frame_velocity(); the state holds u - frame_velocity.
   // Changing it shifts u (a Galilean transformation: the laboratory flow is unchanged).
@@ -77,7 +78,9 @@ class FlowSolver {
   WallMasks masks_;
   std::unique_ptr<PoissonSolver> poisson_;
   double mu_fluid_;
-  double open_faces_ = 1.0;  // global count of x-faces inside the flow cross-section
+  double open_faces_ = 1.0;    // x-faces the flow-rate correction moves, weighted by their share
+  double inside_faces_ = 1.0;  // global count of x-faces inside the pipe (the flow-rate sum)
+  double flow_faces_ = 1.0;    // the cross-section the bulk velocity is over, in face areas (times Nx)
   bool impose_flow_rate_ = false;
   double dpdx_ = 0.0;
   double frame_u_ = 0.0, frame_x_ = 0.0;

@@ -44,6 +44,7 @@ void expect_same(const CaseConfig& a, const CaseConfig& b) {
   EXPECT_EQ(a.flow.wall_frequency, b.flow.wall_frequency);
   EXPECT_EQ(a.flow.initial, b.flow.initial);
   EXPECT_EQ(a.flow.penalization_eta, b.flow.penalization_eta);
+  EXPECT_EQ(a.flow.pipe_wall, b.flow.pipe_wall);
   EXPECT_EQ(a.time.cfl, b.time.cfl);
   EXPECT_EQ(a.time.dt, b.time.dt);
   EXPECT_EQ(a.time.t_end, b.time.t_end);
@@ -87,6 +88,7 @@ bulk_velocity = 2.0
 wall_frequency = 0.5
 initial = "rest"
 penalization_eta = 1e-6
+pipe_wall = "sharp"
 
 [time]
 cfl = 0.4
@@ -149,6 +151,7 @@ TEST(Config, EverySectionIsRead) {
   EXPECT_EQ(c.flow.wall_frequency, 0.5);
   EXPECT_EQ(c.flow.initial, InitialFlow::Rest);
   EXPECT_EQ(c.flow.penalization_eta, 1e-6);
+  EXPECT_EQ(c.flow.pipe_wall, PipeWall::Sharp);
   EXPECT_EQ(c.time.cfl, 0.4);
   EXPECT_EQ(c.time.dt, 1e-3);
   EXPECT_EQ(c.time.t_end, 5.0);
@@ -288,7 +291,7 @@ dt = 0.1234567890123456789
 TEST(Config, ToTomlWritesEveryKey) {
   const std::string text = to_toml(CaseConfig{});
   for (const char* k : {"length", "cells", "geometry", "Re", "bulk_velocity", "wall_velocity", "wall_frequency",
-                        "initial", "penalization_eta", "cfl", "dt", "t_end", "max_steps", "dir", "every",
+                        "initial", "penalization_eta", "pipe_wall", "cfl", "dt", "t_end", "max_steps", "dir", "every",
                         "fields_every", "profiles_every", "checkpoint_every", "shape_times"})
     EXPECT_NE(text.find(std::string("\n") + k + " = "), std::string::npos) << k << " missing from\n" << text;
 }
@@ -335,6 +338,8 @@ TEST(ConfigErrors, Ranges) {
   expect_error("[flow]\nRe = 0\n", {"flow.Re = 0", "> 0"});
   expect_error("[flow]\nwall_frequency = -1\n", {"flow.wall_frequency = -1", ">= 0"});
   expect_error("[flow]\npenalization_eta = 0.0\n", {"flow.penalization_eta = 0.0"});
+  expect_error("[flow]\npipe_wall = \"smooth\"\n", {"flow.pipe_wall", "sharp", "interpolated"});
+  expect_error("[domain]\ngeometry = \"duct\"\n[flow]\npipe_wall = \"sharp\"\n", {"flow.pipe_wall", "pipe"});
   expect_error("[time]\ncfl = 1.01\n", {"time.cfl = 1.01", "(0, 1]"});
   expect_error("[time]\ncfl = 0\n", {"time.cfl = 0"});
   expect_error("[time]\ndt = -0.1\n", {"time.dt = -0.1"});
