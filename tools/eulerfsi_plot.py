@@ -246,6 +246,40 @@ def plot_radial(paths, out=None, label_by=None):
     return save(fig, default_out(runs, "radial.png", out))
 
 
+def model_label(run):
+    """Legend text such as 'reference-map, 8 cells/d, We=4': the solid model and its resolution."""
+    cfg = run.config
+    s = (cfg.get("solid") or [{}])[0]
+    cells = cfg.get("domain", {}).get("cells", [0, 0, 0])
+    length = cfg.get("domain", {}).get("length", [1, 1, 1])
+    per_d = s.get("diameter", 0) * cells[1] / length[1] if cells[1] else 0
+    return f"{s.get('model', 'paper')}, {per_d:.0f} cells/d, $We$={fmt(s.get('We'))}"
+
+
+def plot_models(paths, out=None):
+    """r/R and the Taylor deformation D against t U_b/D, one line per run labelled by solid model and
+    resolution (the solid-model comparison of docs/REFERENCE_MAP.md)."""
+    runs = load_runs(paths)
+    fig, (ax_r, ax_d) = plt.subplots(1, 2, figsize=(11, 4.0))
+    for run in runs:
+        d = run.particle(0)
+        need(d, ["t", "r_over_R", "taylor_D"], f"{run.name}/particle.csv")
+        t = d["t"] * run.time_scale()
+        style = "-" if "reference" in model_label(run) else "--"
+        line, = ax_r.plot(t, d["r_over_R"], style, label=model_label(run))
+        ax_d.plot(t, d["taylor_D"], style, color=line.get_color())
+    ax_r.set_xlabel(T_LABEL)
+    ax_r.set_ylabel(R_LABEL)
+    ax_r.set_ylim(bottom=0)
+    ax_d.set_xlabel(T_LABEL)
+    ax_d.set_ylabel(r"Taylor deformation $D$")
+    ax_d.set_ylim(bottom=0)
+    ax_r.legend(fontsize=7)
+    for ax in (ax_r, ax_d):
+        ax.grid(alpha=0.3)
+    return save(fig, default_out(runs, "models.png", out))
+
+
 # ----------------------------------------------------------------------------- summary plots
 
 
@@ -566,6 +600,8 @@ def build_parser():
     s.set_defaults(func=lambda a: plot_shapes(a.runs[0], a.times, a.out))
     add("forces", "F_r and its pressure, inertia, viscous, elastic parts against t (figs 11, 13)",
         label=True).set_defaults(func=lambda a: plot_forces(a.runs, a.out, a.label_by))
+    add("models", "r/R and D against t, labelled by solid model and cells per diameter").set_defaults(
+        func=lambda a: plot_models(a.runs, a.out))
     add("flow", "bulk_u, dp/dx, max_div, kinetic energy against t", multi=False).set_defaults(
         func=lambda a: plot_flow(a.runs[0], a.out))
     add("all", "every plot that applies to the runs", label=True,

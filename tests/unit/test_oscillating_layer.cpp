@@ -59,30 +59,24 @@ LayerError layer_error(int ny, SolidModelKind model = SolidModelKind::Paper) {
 
 }  // namespace
 
+// Both solid models on the same grids. The reference map carries the layer's displacement q_x(y)
+// (linear within a cell), its wall ghosts are linear extrapolations, and its psi edge is a smooth
+// 3-cell ramp: measured 3.5e-3 -> 9.3e-4 (second order) against the paper model's 3.6e-3 -> 1.3e-3.
+// Each must fall when h halves (ratio > 1.5) and stay below the bound; the reference map may not be
+// worse than the paper model on the finer grid.
 TEST(OscillatingLayer, VelocityConvergesToExactPeriodicSolution) {
   const LayerError c = layer_error(32);
   const LayerError f = layer_error(64);
-  if (test::rank() == 0)
-    std::printf("layer: max velocity error %.3e (bound %.3e) -> %.3e (bound %.3e), ratio %.2f\n", c.max_error, c.bound,
-                f.max_error, f.bound, c.max_error / f.max_error);
-  EXPECT_LT(c.max_error, c.bound);
-  EXPECT_LT(f.max_error, f.bound);
+  const LayerError rc = layer_error(32, SolidModelKind::ReferenceMap);
+  const LayerError rf = layer_error(64, SolidModelKind::ReferenceMap);
+  if (test::rank() == 0) {
+    std::printf("layer, paper model: max velocity error %.3e (bound %.3e) -> %.3e (bound %.3e), ratio %.2f\n",
+                c.max_error, c.bound, f.max_error, f.bound, c.max_error / f.max_error);
+    std::printf("layer, reference map: max velocity error %.3e -> %.3e, ratio %.2f\n", rc.max_error, rf.max_error,
+                rc.max_error / rf.max_error);
+  }
+  for (const LayerError* e : {&c, &f, &rc, &rf}) EXPECT_LT(e->max_error, e->bound);
   EXPECT_GT(c.max_error / f.max_error, 1.5);
-}
-
-// The same with the reference map: the layer's reference displacement q_x(y) is carried by the
-// wall-normal shear alone (q linear in y within a cell), and at the walls its ghosts are linear
-// extrapolations. Same bound (the smoothed edge is 3 cells wide, so first order at the interface),
-// and no larger than the paper model's error on the same grid (measured in the printout).
-TEST(OscillatingLayer, ReferenceMapConvergesAndIsNoWorseThanThePaperModel) {
-  const LayerError c = layer_error(32, SolidModelKind::ReferenceMap);
-  const LayerError f = layer_error(64, SolidModelKind::ReferenceMap);
-  const LayerError p = layer_error(64, SolidModelKind::Paper);
-  if (test::rank() == 0)
-    std::printf("layer, reference map: max velocity error %.3e -> %.3e (ratio %.2f); paper model at 64: %.3e\n",
-                c.max_error, f.max_error, c.max_error / f.max_error, p.max_error);
-  EXPECT_LT(c.max_error, c.bound);
-  EXPECT_LT(f.max_error, f.bound);
-  EXPECT_GT(c.max_error / f.max_error, 1.5);
-  EXPECT_LE(f.max_error, p.max_error);
+  EXPECT_GT(rc.max_error / rf.max_error, 1.5);
+  EXPECT_LE(rf.max_error, f.max_error);
 }
