@@ -28,6 +28,17 @@ Line eigenvalues(int n, double h, bool wall, const char* label) {
   return lam;
 }
 
+// The kernel of divide_by_eigenvalues, outside the class: nvcc refuses device lambdas in private
+// member functions.
+void divide_spectrum(const Complex3& spec, const Line& lx, const Line& ly, const Line& lz, double scale) {
+  const int n[3] = {int(spec.extent(0)), int(spec.extent(1)), int(spec.extent(2))};
+  Kokkos::parallel_for("eulerfsi::poisson::divide_eigenvalues", whole(n),
+                       KOKKOS_LAMBDA(const int m, const int j, const int k) {
+    const double lam = lx(m) + ly(j) + lz(k);
+    spec(m, j, k) = lam == 0.0 ? Complex(0.0, 0.0) : spec(m, j, k) * (scale / lam);
+  });
+}
+
 }  // namespace
 
 FftDctPoisson::FftDctPoisson(const Grid& grid) : engine_(make_fft_engine()) {
@@ -107,15 +118,7 @@ void FftDctPoisson::backward() {
 // hat(phi) = hat(f) / (lambda_x(m) + lambda_y(j) + lambda_z(k)) / (Nx Ny Nz); the zero mode
 // (lambda = 0) is set to 0: it removes mean(f) and gives phi zero mean.
 void FftDctPoisson::divide_by_eigenvalues() {
-  Complex3 spec = spec_;
-  Line lx = lambda_[0], ly = lambda_[1], lz = lambda_[2];
-  const double scale = 1.0 / (double(n_[0]) * n_[1] * n_[2]);
-  const int n[3] = {int(spec.extent(0)), n_[1], n_[2]};
-  Kokkos::parallel_for("eulerfsi::poisson::divide_eigenvalues", whole(n),
-                       KOKKOS_LAMBDA(const int m, const int j, const int k) {
-    const double lam = lx(m) + ly(j) + lz(k);
-    spec(m, j, k) = lam == 0.0 ? Complex(0.0, 0.0) : spec(m, j, k) * (scale / lam);
-  });
+  divide_spectrum(spec_, lambda_[0], lambda_[1], lambda_[2], 1.0 / (double(n_[0]) * n_[1] * n_[2]));
 }
 
 void FftDctPoisson::solve(Field3 rhs_phi) {
