@@ -78,6 +78,7 @@ int run_cli(int argc, char** argv, const eulerfsi::Comm& comm) {
   try {
     if (!out_dir.empty()) sets.push_back("output.dir=\"" + out_dir + "\"");
     const eulerfsi::CaseConfig cfg = eulerfsi::parse_case_file(case_file, sets);
+    eulerfsi::check_build_supports(cfg);
     if (app.got_subcommand("check")) {
       (void)eulerfsi::make_grid(cfg, comm);  // the rank split is part of being valid
       if (comm.root()) std::printf("%s", eulerfsi::to_toml(cfg).c_str());

@@ -520,15 +520,6 @@ void read_output(const Reader& r, const toml::table& root, OutputConfig& o) {
     r.get(t, "output", k, *v);
     r.require(*v >= 0, t, "output", k, "must be >= 0 (0 means never)");
   }
-#ifndef EULERFSI_HAVE_HDF5
-  // snapshots and checkpoints are HDF5 files: refuse them here rather than skip them silently
-  for (auto [k, v] : {std::pair<const char*, long*>{"fields_every", &o.fields_every},
-                      {"checkpoint_every", &o.checkpoint_every}}) {
-    r.require(*v == 0, t, "output", k,
-              "must be 0 in this eulerfsi, built without HDF5 (-DEULERFSI_ENABLE_HDF5=OFF): field snapshots and "
-              "checkpoints are HDF5 files; CSV output (output.every, output.profiles_every, output.shape_times) works");
-  }
-#endif
   if (const toml::node* n = t ? t->get("shape_times") : nullptr) {
     o.shape_times = r.numbers(*n, "output.shape_times", 0, false);
     for (std::size_t i = 0; i < o.shape_times.size(); ++i)
@@ -740,6 +731,23 @@ std::string to_toml(const CaseConfig& c) {
        << "sharpening = " << fmt_double(s.sharpening) << "\n";
   }
   return os.str();
+}
+
+void check_build_supports(const CaseConfig& cfg) {
+#ifndef EULERFSI_HAVE_HDF5
+  // snapshots and checkpoints are HDF5 files: refuse them rather than skip them silently
+  for (auto [key, every] : {std::pair<const char*, long>{"output.fields_every", cfg.output.fields_every},
+                            {"output.checkpoint_every", cfg.output.checkpoint_every}}) {
+    if (every != 0) {
+      throw ConfigError(cfg.source + ": " + key + " = " + std::to_string(every) +
+                        ": must be 0 in this eulerfsi, built without HDF5 (-DEULERFSI_ENABLE_HDF5=OFF): field snapshots "
+                        "and checkpoints are HDF5 files; CSV output (output.every, output.profiles_every, "
+                        "output.shape_times) works");
+    }
+  }
+#else
+  (void)cfg;
+#endif
 }
 
 }  // namespace eulerfsi
