@@ -38,8 +38,9 @@ void exchange_x(Field3 f, const Grid& g, MPI_Comm comm) {
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
   if (size == 1) {
-    // one rank is its own neighbour: the periodic fill f(g - 1 - l) = f(g + nx - 1 - l),
-    // f(g + nx + l) = f(g + l), l < g, as one kernel in MemSpace (no MPI, no host staging)
+    // one rank is its own neighbour: the periodic fill f(l) = f(l + nx), f(g + nx + l) = f(g + l)
+    // for l < g, whole planes, as one kernel in MemSpace (no MPI, no host staging; the same values
+    // the two self-messages below would copy)
     const int g = kGhost;
     Kokkos::parallel_for("eulerfsi::halo::periodic_x", Policy3({0, 0, 0}, {g, int(f.extent(1)), int(f.extent(2))}),
                          KOKKOS_LAMBDA(const int l, const int j, const int k) {
