@@ -10,6 +10,9 @@
 // V = FFT(v) (one real-to-complex FFT); X(m) = 2 Re(exp(-i pi m / 2N) V(m)), V(m) = conj V(N-m).
 // Its exact inverse (a DCT-III up to the factor): V(m) = exp(+i pi m / 2N) (X(m) - i X(N-m)) / 2
 // with X(N) = 0, for m = 0..N/2; v = backward FFT(V) = N x reordered (the 1/N is the caller's).
+#include <cmath>
+#include <string>
+
 #include "core/compat.hpp"
 #include "core/types.hpp"
 
@@ -88,40 +91,57 @@ inline void dct2_reorder(const Real3& x, const RealBuffer& buf, int axis) {
   });
 }
 
+// The twiddle factors of a line of length N: cos and sin of theta_m = pi m / 2N, m < N, tabulated
+// once (one sin/cos per cell and pass cost more than the FFT itself on CPUs).
+struct Twiddle {
+  Kokkos::View<double*, MemSpace> cos, sin;
+};
+inline Twiddle make_twiddle(int N) {
+  Twiddle t{Kokkos::View<double*, MemSpace>(std::string("eulerfsi::fft::twiddle_cos"), N),
+            Kokkos::View<double*, MemSpace>(std::string("eulerfsi::fft::twiddle_sin"), N)};
+  auto c = Kokkos::create_mirror_view(t.cos);
+  auto s = Kokkos::create_mirror_view(t.sin);
+  const double pi = 3.14159265358979323846;
+  for (int m = 0; m < N; ++m) {
+    c(m) = std::cos(pi * m / (2.0 * N));
+    s(m) = std::sin(pi * m / (2.0 * N));
+  }
+  Kokkos::deep_copy(t.cos, c);
+  Kokkos::deep_copy(t.sin, s);
+  return t;
+}
+
 // DCT-II step 3, twiddle: X(m) = 2 Re(exp(-i theta) V(m)) = 2 (cos theta Re V + sin theta Im V),
 // theta = pi m / 2N, V(m) from the half-complex output (conj V(N-m) above N/2); X overwrites x.
-inline void dct2_twiddle(const ComplexBuffer& spec, const Real3& x, int axis) {
+inline void dct2_twiddle(const ComplexBuffer& spec, const Real3& x, int axis, const Twiddle& tw) {
   const Lines L{axis, {int(x.extent(0)), int(x.extent(1)), int(x.extent(2))}};
   const int N = L.length();
   const long half = N / 2 + 1;
-  const double pi = 3.14159265358979323846;
+  const auto cs = tw.cos, sn = tw.sin;
   Kokkos::parallel_for("eulerfsi::fft::dct2_twiddle", whole(L.n), KOKKOS_LAMBDA(const int i, const int j, const int k) {
     const int m = L.pos(i, j, k);
     const Complex V = m <= N / 2 ? spec(L.line(i, j, k) * half + m) : Kokkos::conj(spec(L.line(i, j, k) * half + N - m));
-    const double theta = pi * m / (2.0 * N);
-    x(i, j, k) = 2.0 * (compat::cos(theta) * V.real() + compat::sin(theta) * V.imag());
+    x(i, j, k) = 2.0 * (cs(m) * V.real() + sn(m) * V.imag());
   });
 }
 
 // DCT-III step 1 (inverse of the DCT-II above), twiddle: for m = 0..N/2
 //   V(m) = exp(i theta) (X(m) - i X(N-m)) / 2,  theta = pi m / 2N,  X(N) = 0,
 // i.e. Re V = (X(m) cos theta + X(N-m) sin theta) / 2, Im V = (X(m) sin theta - X(N-m) cos theta) / 2.
-inline void dct3_twiddle(const Real3& X, const ComplexBuffer& spec, int axis) {
+inline void dct3_twiddle(const Real3& X, const ComplexBuffer& spec, int axis, const Twiddle& tw) {
   const Lines L{axis, {int(X.extent(0)), int(X.extent(1)), int(X.extent(2))}};
   const int N = L.length();
   const long half = N / 2 + 1;
   int range[3] = {L.n[0], L.n[1], L.n[2]};
   range[axis] = N / 2 + 1;
-  const double pi = 3.14159265358979323846;
+  const auto cs = tw.cos, sn = tw.sin;
   Kokkos::parallel_for("eulerfsi::fft::dct3_twiddle", whole(range), KOKKOS_LAMBDA(const int i, const int j, const int k) {
     int s[3] = {i, j, k};
     const int m = s[axis];
     const double a = X(i, j, k);
     s[axis] = N - m;
     const double c = m == 0 ? 0.0 : X(s[0], s[1], s[2]);
-    const double theta = pi * m / (2.0 * N);
-    const double cs = compat::cos(theta), sn = compat::sin(theta);
-    spec(L.line(i, j, k) * half + m) = Complex(0.5 * (a * cs + c * sn), 0.5 * (a * sn - c * cs));
+    spec(L.line(i, j, k) * half + m) = Complex(0.5 * (a * cs(m) + c * sn(m)), 0.5 * (a * sn(m) - c * cs(m)));
   });
 }
 

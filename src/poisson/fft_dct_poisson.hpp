@@ -46,6 +46,7 @@ class FftDctPoisson final : public PoissonSolver {
   fft_lines::RealBuffer lines_;    // engine input/output, real lines
   fft_lines::ComplexBuffer clines_;  // engine input/output, complex lines
   Line lambda_[3];                 // 1-D eigenvalues per direction, indexed by mode
+  fft_lines::Twiddle twiddle_[3];  // DCT twiddle factors per direction (axes 1 and 2)
 };
 
 }  // namespace eulerfsi
