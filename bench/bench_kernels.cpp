@@ -10,7 +10,7 @@
 // below it is compute, latency or traffic bound (reads its fields several times).
 // The Poisson solve is in bench_poisson. The time is the slowest rank's.
 #include <benchmark/benchmark.h>
-#include <mpi.h>
+#include "parallel/mpi.hpp"
 
 #include <chrono>
 #include <string>

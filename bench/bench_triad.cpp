@@ -6,7 +6,7 @@
 // about to overwrite, so the bus really moves 32 bytes per element; GB/s_with_write_allocate
 // reports that (= GB/s x 4/3) for comparison with kernels whose bytes are counted the same way.
 #include <benchmark/benchmark.h>
-#include <mpi.h>
+#include "parallel/mpi.hpp"
 
 #include <chrono>
 #include <string>

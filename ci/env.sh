@@ -1,6 +1,9 @@
 # Sourced by the ci/ scripts: where Kokkos is, how MPI may run here.
 deps_dir=${EULERFSI_DEPS:-$HOME/.cache/eulerfsi}
-if [ -z "${KOKKOS_ROOT:-}" ]; then
+# EULERFSI_KOKKOS4=1: the Kokkos 4.6 that `ci/setup --kokkos4` builds (it overrides KOKKOS_ROOT)
+if [ "${EULERFSI_KOKKOS4:-0}" = 1 ]; then
+  export KOKKOS_ROOT="$deps_dir/kokkos-4.6-openmp"
+elif [ -z "${KOKKOS_ROOT:-}" ]; then
   export KOKKOS_ROOT="$deps_dir/kokkos-3.4.1-openmp"
 fi
 # Open MPI refuses root and more ranks than cores unless told otherwise.

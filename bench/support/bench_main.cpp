@@ -2,7 +2,7 @@
 // benchmark (they are collective), but only rank 0 reports: the others print nothing and
 // write no --benchmark_out file.
 #include <benchmark/benchmark.h>
-#include <mpi.h>
+#include "parallel/mpi.hpp"
 
 #include <Kokkos_Core.hpp>
 #include <cstring>

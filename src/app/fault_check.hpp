@@ -1,6 +1,6 @@
 #pragma once
 // Finds where a field stopped being finite, for the error message of a blown-up run.
-#include <mpi.h>
+#include "parallel/mpi.hpp"
 
 #include <string>
 #include <utility>

@@ -2,9 +2,9 @@
 //   eulerfsi run CASE.toml [--set section.key=value ...] [--out DIR] [--restart [FILE]]
 //   eulerfsi check CASE.toml [--set ...]      validate and print the resolved configuration
 //   eulerfsi info                             version, Kokkos backend, MPI ranks, FFT library
-#include <fftw3.h>
+#ifdef EULERFSI_HAVE_HDF5
 #include <hdf5.h>
-#include <mpi.h>
+#endif
 
 #include <CLI/CLI.hpp>
 #include <Kokkos_Core.hpp>
@@ -17,21 +17,31 @@
 #include "config/case_config.hpp"
 #include "core/compat.hpp"
 #include "parallel/comm.hpp"
+#include "parallel/mpi.hpp"
+#include "poisson/poisson_solver.hpp"
 
 namespace {
 
 void print_info(const eulerfsi::Comm& comm) {
   if (!comm.root()) return;
-  unsigned h5maj = 0, h5min = 0, h5rel = 0;
-  H5get_libversion(&h5maj, &h5min, &h5rel);
   const int kv = KOKKOS_VERSION;
   std::printf("eulerfsi %s\n", EULERFSI_VERSION);
   std::printf("kokkos     %d.%d.%d\n", kv / 10000, kv / 100 % 100, kv % 100);
   std::printf("backend    %s (concurrency %d)\n", eulerfsi::compat::default_backend_name(),
               int(Kokkos::DefaultExecutionSpace().concurrency()));
+#ifdef EULERFSI_HAVE_MPI
   std::printf("mpi ranks  %d\n", comm.size());
-  std::printf("fft        %s (distributed r2r via fftw3-mpi)\n", fftw_version);
+#else
+  std::printf("mpi        none (built without MPI: one process)\n");
+#endif
+  std::printf("fft        %s\n", eulerfsi::poisson_backend_info().c_str());
+#ifdef EULERFSI_HAVE_HDF5
+  unsigned h5maj = 0, h5min = 0, h5rel = 0;
+  H5get_libversion(&h5maj, &h5min, &h5rel);
   std::printf("hdf5       %u.%u.%u (parallel)\n", h5maj, h5min, h5rel);
+#else
+  std::printf("hdf5       none (built without HDF5: no field snapshots, no checkpoints)\n");
+#endif
 }
 
 int run_cli(int argc, char** argv, const eulerfsi::Comm& comm) {
@@ -68,6 +78,7 @@ int run_cli(int argc, char** argv, const eulerfsi::Comm& comm) {
   try {
     if (!out_dir.empty()) sets.push_back("output.dir=\"" + out_dir + "\"");
     const eulerfsi::CaseConfig cfg = eulerfsi::parse_case_file(case_file, sets);
+    eulerfsi::check_build_supports(cfg);
     if (app.got_subcommand("check")) {
       (void)eulerfsi::make_grid(cfg, comm);  // the rank split is part of being valid
       if (comm.root()) std::printf("%s", eulerfsi::to_toml(cfg).c_str());
@@ -76,6 +87,11 @@ int run_cli(int argc, char** argv, const eulerfsi::Comm& comm) {
     eulerfsi::RunOptions opt;
     opt.restart = restart->count() > 0;
     opt.restart_file = restart_file;
+#ifndef EULERFSI_HAVE_HDF5
+    if (opt.restart)
+      throw eulerfsi::ConfigError("--restart: this eulerfsi was built without HDF5 (-DEULERFSI_ENABLE_HDF5=OFF) and "
+                                  "has no checkpoints to continue from");
+#endif
     opt.quiet = quiet;
     return eulerfsi::run_case(cfg, comm, opt);
   } catch (const eulerfsi::ConfigError& e) {

@@ -322,6 +322,12 @@ class Simulation {
   }
 
   int stop_on_signal(int sig) {
+#ifndef EULERFSI_HAVE_HDF5
+    if (comm_.root())
+      std::fprintf(stderr, "stopped by signal %d at step %ld, t = %.6g; no checkpoint (built without HDF5)\n", sig,
+                   step_, t_);
+    return 128 + sig;
+#endif
     write_restart_file();
     if (comm_.root())
       std::fprintf(stderr, "stopped by signal %d at step %ld, t = %.6g; checkpoint written: %s (continue with --restart)\n",

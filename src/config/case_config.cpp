@@ -752,4 +752,21 @@ std::string to_toml(const CaseConfig& c) {
   return os.str();
 }
 
+void check_build_supports(const CaseConfig& cfg) {
+#ifndef EULERFSI_HAVE_HDF5
+  // snapshots and checkpoints are HDF5 files: refuse them rather than skip them silently
+  for (auto [key, every] : {std::pair<const char*, long>{"output.fields_every", cfg.output.fields_every},
+                            {"output.checkpoint_every", cfg.output.checkpoint_every}}) {
+    if (every != 0) {
+      throw ConfigError(cfg.source + ": " + key + " = " + std::to_string(every) +
+                        ": must be 0 in this eulerfsi, built without HDF5 (-DEULERFSI_ENABLE_HDF5=OFF): field snapshots "
+                        "and checkpoints are HDF5 files; CSV output (output.every, output.profiles_every, "
+                        "output.shape_times) works");
+    }
+  }
+#else
+  (void)cfg;
+#endif
+}
+
 }  // namespace eulerfsi

@@ -91,6 +91,11 @@ struct CaseConfig {
 // the number of solids appends one. Overrides are applied before validation, so they are checked
 // the same way; every error is a ConfigError naming the file (and the override, if one is involved).
 CaseConfig parse_case_file(const std::string& path, const std::vector<std::string>& overrides = {});
+
+// Refuses, with a ConfigError naming the key, what this build cannot do although the case file is
+// valid: output.fields_every and output.checkpoint_every without HDF5. `eulerfsi check` and
+// `eulerfsi run` call it; parsing stays the same in every build.
+void check_build_supports(const CaseConfig& cfg);
 CaseConfig parse_case_string(const std::string& toml_text, const std::vector<std::string>& overrides = {},
                              const std::string& source_name = "<string>");
 // The resolved configuration as TOML (every key, defaults filled in): written into the run directory.

@@ -33,6 +33,19 @@ KOKKOS_INLINE_FUNCTION int imax(int a, int b) { return a > b ? a : b; }
 // Kokkos::fence("label") appeared after 3.4.
 inline void fence() { Kokkos::fence(); }
 
+// The stream of the default device instance, for libraries (cuFFT, hipFFT) that must run in
+// order with our kernels. HIP left Kokkos::Experimental in 4.0.
+#ifdef KOKKOS_ENABLE_CUDA
+inline cudaStream_t cuda_stream() { return Kokkos::Cuda().cuda_stream(); }
+#endif
+#ifdef KOKKOS_ENABLE_HIP
+#if KOKKOS_VERSION >= 40000
+inline hipStream_t hip_stream() { return Kokkos::HIP().hip_stream(); }
+#else
+inline hipStream_t hip_stream() { return Kokkos::Experimental::HIP().hip_stream(); }
+#endif
+#endif
+
 // Name of the default execution space, for `eulerfsi info` and benchmark labels.
 inline const char* default_backend_name() { return Kokkos::DefaultExecutionSpace::name(); }
 

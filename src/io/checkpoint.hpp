@@ -20,7 +20,7 @@
 // where index is the global linear (x, y, z) index and mix is the splitmix64 finaliser (a bijection).
 // A sum is order independent, so it is the same for any number of ranks; any change to a single
 // value (or a swap of two values) always changes it; multi-value corruption escapes with ~2^-64.
-#include <mpi.h>
+#include "parallel/mpi.hpp"
 
 #include <array>
 #include <map>

@@ -1,7 +1,7 @@
 #pragma once
 // Cell-centred snapshots in parallel HDF5 plus one XDMF index that ParaView opens as a time
 // series. Datasets are stored (z, y, x) so that ParaView's X axis is the pipe axis.
-#include <mpi.h>
+#include "parallel/mpi.hpp"
 
 #include <string>
 #include <utility>

@@ -1,7 +1,7 @@
 #pragma once
 // Mean velocity profiles: pipe -> (r, u) in radial bins one cell wide, averaged over x and
 // angle; channel, couette, duct, periodic -> (y, u, v, w[, psi]) averaged over x and z.
-#include <mpi.h>
+#include "parallel/mpi.hpp"
 
 #include <string>
 

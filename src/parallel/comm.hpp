@@ -1,6 +1,6 @@
 #pragma once
 // The few collective operations the driver needs, on one communicator.
-#include <mpi.h>
+#include "parallel/mpi.hpp"
 
 namespace eulerfsi {
 

@@ -1,6 +1,6 @@
 #pragma once
 // Ghost exchange across the x-slab decomposition.
-#include <mpi.h>
+#include "parallel/mpi.hpp"
 
 #include "core/types.hpp"
 #include "grid/grid.hpp"
@@ -12,7 +12,9 @@ namespace eulerfsi {
 // y/z ghosts included, so edges and corners are right once y/z ghosts were filled before.
 // Fences first: pending kernels that write f must finish before MPI reads it.
 // f must be a full field of g (extent(0) == nx_local + 2 kGhost), contiguous.
-// Device memory is staged through host buffers unless EULERFSI_GPU_AWARE_MPI is defined.
+// Device memory is staged through host buffers unless EULERFSI_GPU_AWARE_MPI is defined; on one
+// rank (and in builds without MPI) the ghosts are filled by a kernel, without MPI. Does not fence
+// at the end: later kernels on ExecSpace see the ghosts, the host must fence first.
 void exchange_x(Field3 f, const Grid& g, MPI_Comm comm);
 
 }  // namespace eulerfsi

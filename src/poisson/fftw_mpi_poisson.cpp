@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/compat.hpp"
+#include "poisson/fftw_threads.hpp"
 
 namespace eulerfsi {
 
@@ -14,10 +15,8 @@ namespace {
 void ensure_fftw_mpi_init() {
   // a function-local static runs exactly once, even if two threads construct solvers
   static const bool done = [] {
-#ifdef EULERFSI_FFTW_THREADS
     // the host threads Kokkos runs on also run the transforms (FFTW wants this before mpi_init)
-    fftw_init_threads();
-#endif
+    fftw_threads_once();
     fftw_mpi_init();
     return true;
   }();

@@ -7,7 +7,7 @@
 // transpose; the spectrum is left transposed (y distributed) for the division and the
 // backward transform takes it back, which saves two of the four all-to-alls.
 #include <fftw3-mpi.h>
-#include <mpi.h>
+#include "parallel/mpi.hpp"
 
 #include <cstddef>
 

@@ -1,13 +1,45 @@
 #include "poisson/poisson_solver.hpp"
 
+#include "poisson/fft_dct_poisson.hpp"
+#ifdef EULERFSI_HAVE_MPI
 #include "poisson/fftw_mpi_poisson.hpp"
+#endif
 
 namespace eulerfsi {
 
 PoissonSolver::~PoissonSolver() = default;
 
+namespace {
+// CMake's EULERFSI_POISSON (AUTO picks FFT_DCT without MPI or on GPUs, FFTW_MPI otherwise)
+#ifdef EULERFSI_POISSON_DEFAULT_FFT_DCT
+constexpr bool kPreferFftDct = true;
+#else
+constexpr bool kPreferFftDct = false;
+#endif
+}  // namespace
+
 std::unique_ptr<PoissonSolver> make_poisson_solver(const Grid& grid, MPI_Comm comm) {
-  return std::make_unique<FftwMpiPoisson>(grid, comm);
+#ifdef EULERFSI_HAVE_MPI
+  int size = 1;
+  MPI_Comm_size(comm, &size);
+  // FFT_DCT works on one rank only: a distributed run takes FFTW-MPI's transposes
+  if (!kPreferFftDct || size > 1) return std::make_unique<FftwMpiPoisson>(grid, comm);
+#else
+  (void)comm;
+  static_assert(kPreferFftDct, "a build without MPI has only the FFT_DCT Poisson solver");
+#endif
+  return std::make_unique<FftDctPoisson>(grid);
+}
+
+std::string poisson_backend_info() {
+  const std::string fft_dct = "fft-dct (one rank: r2c FFT + Makhoul DCT kernels, batched 1-D " +
+                              make_fft_engine()->name() + ")";
+#ifdef EULERFSI_HAVE_MPI
+  const std::string fftw_mpi = std::string("fftw-mpi (distributed r2r via fftw3-mpi, ") + fftw_version + ")";
+  return kPreferFftDct ? fft_dct + "; on several ranks " + fftw_mpi : fftw_mpi;
+#else
+  return fft_dct;
+#endif
 }
 
 }  // namespace eulerfsi

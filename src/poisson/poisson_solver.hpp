@@ -1,9 +1,10 @@
 #pragma once
 // The pressure Poisson solve behind one small interface, so a cuFFT/hipFFT backend can
 // replace FFTW without touching the time stepper.
-#include <mpi.h>
+#include "parallel/mpi.hpp"
 
 #include <memory>
+#include <string>
 
 #include "core/types.hpp"
 #include "grid/grid.hpp"
@@ -27,5 +28,8 @@ class PoissonSolver {
 
 // The best solver available for this build (today: FFTW-MPI on x-slabs).
 std::unique_ptr<PoissonSolver> make_poisson_solver(const Grid& grid, MPI_Comm comm);
+
+// One line for `eulerfsi info`: the solver this build picks and its FFT library.
+std::string poisson_backend_info();
 
 }  // namespace eulerfsi

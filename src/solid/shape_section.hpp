@@ -1,7 +1,7 @@
 #pragma once
 // The particle's cross-section for the paper's shape figures: the psi = 0.5 contour in the plane
 // through the particle centre that contains the pipe axis (x and the radial direction).
-#include <mpi.h>
+#include "parallel/mpi.hpp"
 
 #include <string>
 #include <vector>

@@ -1,7 +1,7 @@
 #pragma once
 // Ghost layers of every field: x by the periodic halo exchange across ranks, then y and z by
 // the geometry's rule (periodic, or no-slip walls possibly moving in x).
-#include <mpi.h>
+#include "parallel/mpi.hpp"
 
 #include "config/case_config.hpp"
 #include "grid/grid.hpp"

@@ -1,7 +1,7 @@
 // Checkpoints round-trip bit for bit and refuse, with one message on every rank, anything damaged.
 #include <gtest/gtest.h>
 #include <hdf5.h>
-#include <mpi.h>
+#include "parallel/mpi.hpp"
 #include <unistd.h>
 
 #include <algorithm>

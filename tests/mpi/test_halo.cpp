@@ -1,6 +1,6 @@
 // exchange_x fills the x-ghost planes from the periodic x-neighbours, whole planes included.
 #include <gtest/gtest.h>
-#include <mpi.h>
+#include "parallel/mpi.hpp"
 
 #include "grid/grid.hpp"
 #include "parallel/halo.hpp"

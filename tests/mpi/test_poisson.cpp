@@ -1,20 +1,26 @@
-// The FFTW-MPI Poisson solver against manufactured discrete solutions for every (y, z)
-// boundary combination, on 1 and 2 ranks (the same expectations on both).
+// The Poisson solvers against manufactured discrete solutions for every (y, z) boundary
+// combination: FFTW-MPI on 1 and 2 ranks (the same expectations on both), FFT_DCT (r2c FFT +
+// Makhoul DCT kernels) on 1 rank, and the two against each other.
 #include <gtest/gtest.h>
-#include <mpi.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <functional>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
 #include "grid/grid.hpp"
 #include "parallel/halo.hpp"
-#include "poisson/fftw_mpi_poisson.hpp"
+#include "parallel/mpi.hpp"
+#include "poisson/fft_dct_poisson.hpp"
 #include "poisson/poisson_solver.hpp"
+#ifdef EULERFSI_HAVE_MPI
+#include "poisson/fftw_mpi_poisson.hpp"
+#endif
 #include "support/mpi_env.hpp"
 
 namespace {
@@ -89,7 +95,12 @@ double allreduce(double v, MPI_Op op) {
   return r;
 }
 
+using MakeSolver = std::function<std::unique_ptr<eulerfsi::PoissonSolver>(const Grid&)>;
+const MakeSolver kDefault = [](const Grid& g) { return eulerfsi::make_poisson_solver(g, MPI_COMM_WORLD); };
+const MakeSolver kFftDct = [](const Grid& g) { return std::make_unique<eulerfsi::FftDctPoisson>(g); };
+
 struct Outcome {
+  Kokkos::View<double***, Kokkos::LayoutRight, Kokkos::HostSpace> phi;  // with ghosts, filled
   double err = 0.0;       // max |phi - (phi_e - mean phi_e)|
   double res = 0.0;       // max |L_h phi - (f - mean f)|
   double max_phi = 0.0;   // max |phi_e - mean phi_e| (or |phi| for a random f)
@@ -100,7 +111,7 @@ struct Outcome {
 
 // Solves with f = L_h phi_exact (manufactured) or a random f with nonzero mean; checks on the
 // host after exchange_x and a y/z ghost fill, as the time stepper would.
-Outcome run(const Case& c, bool random_f) {
+Outcome run(const Case& c, bool random_f, const MakeSolver& make = kDefault) {
   const int rank = eulerfsi::test::rank(), size = eulerfsi::test::nranks();
   const Grid g(c.n, c.len, c.by, c.bz, rank, size);
   const int e0 = g.ext(0), e1 = g.ext(1), e2 = g.ext(2);
@@ -141,7 +152,7 @@ Outcome run(const Case& c, bool random_f) {
       for (int k = kGhost; k < kGhost + nz; ++k) h(i, j, k) = f(i, j, k);
   Kokkos::deep_copy(field, h);
 
-  auto solver = eulerfsi::make_poisson_solver(g, MPI_COMM_WORLD);
+  auto solver = make(g);
   solver->solve(field);
   eulerfsi::exchange_x(field, g, MPI_COMM_WORLD);
   Kokkos::deep_copy(h, field);
@@ -161,6 +172,7 @@ Outcome run(const Case& c, bool random_f) {
   }
 
   Outcome o;
+  o.phi = h;
   double sum_phi = 0.0;
   for (int i = kGhost; i < kGhost + nx; ++i)
     for (int j = kGhost; j < kGhost + ny; ++j)
@@ -191,9 +203,9 @@ Outcome run(const Case& c, bool random_f) {
   o.mean_phi = allreduce(sum_phi, MPI_SUM) / N;
   o.cond = condition_number(g);
   if (rank == 0) {
-    std::printf("[poisson] np=%d %-16s %s  err/max|phi_e| = %.2e  max|L phi - f|/max|f| = %.2e  "
+    std::printf("[poisson] %-8s np=%d %-16s %s  err/max|phi_e| = %.2e  max|L phi - f|/max|f| = %.2e  "
                 "mean(phi) = %.1e  tol = %.1e\n",
-                size, case_name(c).c_str(), random_f ? "random f    " : "manufactured", o.err / o.max_phi,
+                solver->name(), size, case_name(c).c_str(), random_f ? "random f    " : "manufactured", o.err / o.max_phi,
                 o.res / o.max_f, o.mean_phi, 64.0 * std::numeric_limits<double>::epsilon() * o.cond);
   }
   return o;
@@ -235,19 +247,69 @@ INSTANTIATE_TEST_SUITE_P(
         Case{{12, 9, 7}, {1.0, 1.5, 0.7}, P, W}, Case{{12, 9, 7}, {1.0, 1.5, 0.7}, W, W}),
     [](const ::testing::TestParamInfo<Case>& p) { return case_name(p.param); });
 
-TEST(Poisson, FactoryGivesFftwMpi) {
+// FFT_DCT is a one-rank solver: on 2 ranks these tests have nothing to run.
+#define SKIP_UNLESS_ONE_RANK() \
+  if (eulerfsi::test::nranks() > 1) GTEST_SKIP() << "FFT_DCT runs on one rank"
+
+TEST_P(PoissonCases, FftDctRecoversManufacturedSolution) {
+  SKIP_UNLESS_ONE_RANK();
+  const Outcome o = run(GetParam(), false, kFftDct);
+  EXPECT_LE(o.err, tolerance(o) * o.max_phi);
+  EXPECT_LE(o.res, tolerance(o) * o.max_f);
+  EXPECT_LE(std::fabs(o.mean_phi), tolerance(o) * o.max_phi);
+}
+
+TEST_P(PoissonCases, FftDctRandomRhsResidualAtRoundOff) {
+  SKIP_UNLESS_ONE_RANK();
+  const Outcome o = run(GetParam(), true, kFftDct);
+  EXPECT_LE(o.res, tolerance(o) * o.max_f);
+  EXPECT_LE(std::fabs(o.mean_phi), tolerance(o) * o.max_phi);
+}
+
+#ifdef EULERFSI_HAVE_MPI
+// The same random f through both solvers: the solutions agree to 1e-12 of max |phi|.
+TEST_P(PoissonCases, FftDctAgreesWithFftwMpi) {
+  SKIP_UNLESS_ONE_RANK();
+  const MakeSolver fftw_mpi = [](const Grid& g) { return std::make_unique<eulerfsi::FftwMpiPoisson>(g, MPI_COMM_WORLD); };
+  const Outcome a = run(GetParam(), true, fftw_mpi), b = run(GetParam(), true, kFftDct);
+  double diff = 0.0;
+  for (std::size_t i = kGhost; i < a.phi.extent(0) - kGhost; ++i)
+    for (std::size_t j = kGhost; j < a.phi.extent(1) - kGhost; ++j)
+      for (std::size_t k = kGhost; k < a.phi.extent(2) - kGhost; ++k) diff = std::max(diff, std::fabs(a.phi(i, j, k) - b.phi(i, j, k)));
+  std::printf("[poisson] fft-dct vs fftw-mpi %-16s max|diff|/max|phi| = %.2e\n", case_name(GetParam()).c_str(),
+              diff / a.max_phi);
+  EXPECT_LE(diff, 1e-12 * a.max_phi);
+}
+#endif
+
+TEST(Poisson, FactoryGivesTheBuildsSolver) {
   const int cells[3] = {12, 8, 8};
   const double len[3] = {1.0, 1.0, 1.0};
   const Grid g(cells, len, W, W, eulerfsi::test::rank(), eulerfsi::test::nranks());
+#if defined(EULERFSI_POISSON_DEFAULT_FFT_DCT)
+  // FFT_DCT on one rank; distributed runs take FFTW-MPI
+  EXPECT_STREQ(eulerfsi::make_poisson_solver(g, MPI_COMM_WORLD)->name(),
+               eulerfsi::test::nranks() == 1 ? "fft-dct" : "fftw-mpi");
+#else
   EXPECT_STREQ(eulerfsi::make_poisson_solver(g, MPI_COMM_WORLD)->name(), "fftw-mpi");
+#endif
 }
 
+#ifdef EULERFSI_HAVE_MPI
 TEST(Poisson, RejectsGridOfAnotherDecomposition) {
   // a grid split for twice the ranks of the communicator: FFTW's slabs differ on every rank
   const int cells[3] = {24, 8, 8};
   const double len[3] = {1.0, 1.0, 1.0};
   const Grid g(cells, len, W, W, eulerfsi::test::rank(), 2 * eulerfsi::test::nranks());
   EXPECT_THROW(eulerfsi::FftwMpiPoisson(g, MPI_COMM_WORLD), std::runtime_error);
+}
+#endif
+
+TEST(Poisson, FftDctRejectsASplitGrid) {
+  const int cells[3] = {24, 8, 8};
+  const double len[3] = {1.0, 1.0, 1.0};
+  const Grid g(cells, len, W, P, 0, 2);
+  EXPECT_THROW(eulerfsi::FftDctPoisson{g}, std::invalid_argument);
 }
 
 }  // namespace

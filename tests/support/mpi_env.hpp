@@ -1,6 +1,6 @@
 #pragma once
 // Small helpers for tests that run on several ranks.
-#include <mpi.h>
+#include "parallel/mpi.hpp"
 
 namespace eulerfsi::test {
 inline int rank() { int r = 0; MPI_Comm_rank(MPI_COMM_WORLD, &r); return r; }

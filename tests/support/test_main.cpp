@@ -1,7 +1,7 @@
 // One main for every GoogleTest executable: MPI and Kokkos live for the whole run, and only
 // rank 0 prints, so a failure on any rank still fails the test through the exit code.
 #include <gtest/gtest.h>
-#include <mpi.h>
+#include "parallel/mpi.hpp"
 
 #include <Kokkos_Core.hpp>
 
