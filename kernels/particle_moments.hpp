@@ -202,31 +202,39 @@ struct ForceTerm {
   }
 };
 
+// mu = mu_f + psi dmu at a cell centre, and its four-cell average on the D-E edge.
+KOKKOS_INLINE_FUNCTION double mixture_mu(const Field3& psi, double mu_f, double dmu, int a, int b, int c) {
+  return mu_f + dmu * psi(a, b, c);
+}
+template <int D, int E>
+KOKKOS_INLINE_FUNCTION double mixture_mu_edge(const Field3& psi, double mu_f, double dmu, int a, int b, int c) {
+  constexpr int di = Unit<D>::i, dj = Unit<D>::j, dk = Unit<D>::k, ei = Unit<E>::i, ej = Unit<E>::j, ek = Unit<E>::k;
+  return 0.25 * (mixture_mu(psi, mu_f, dmu, a, b, c) + mixture_mu(psi, mu_f, dmu, a + di, b + dj, c + dk) +
+                 mixture_mu(psi, mu_f, dmu, a + ei, b + ej, c + ek) +
+                 mixture_mu(psi, mu_f, dmu, a + di + ei, b + dj + ej, c + dk + ek));
+}
+
 // div(2 mu E)_D at the D-face with the mixture viscosity mu = mu_f + psi dmu at cell centres and
 // the four-cell average on edges: the viscous stencil of kernels/momentum.hpp.
 template <int D>
 KOKKOS_INLINE_FUNCTION double mixture_viscous_at_face(const Velocity& vel, const Field3& psi, double mu_f, double dmu,
                                                       const double inv_h[3], int i, int j, int k) {
   constexpr int E1 = (D + 1) % 3, E2 = (D + 2) % 3;
-  auto mu = [&](int a, int b, int c) { return mu_f + dmu * psi(a, b, c); };
-  auto mu_edge = [&](int E, int a, int b, int c) {
-    const int ei = E == 0, ej = E == 1, ek = E == 2;
-    constexpr int di = Unit<D>::i, dj = Unit<D>::j, dk = Unit<D>::k;
-    return 0.25 * (mu(a, b, c) + mu(a + di, b + dj, c + dk) + mu(a + ei, b + ej, c + ek) +
-                   mu(a + di + ei, b + dj + ej, c + dk + ek));
-  };
   const Field3& uD = vel.c[D];
-  const double sp = 2.0 * mu(i + Unit<D>::i, j + Unit<D>::j, k + Unit<D>::k) *
+  const double sp = 2.0 * mixture_mu(psi, mu_f, dmu, i + Unit<D>::i, j + Unit<D>::j, k + Unit<D>::k) *
                     (shifted<D>(uD, i, j, k, 1) - uD(i, j, k)) * inv_h[D];
-  const double sm = 2.0 * mu(i, j, k) * (uD(i, j, k) - shifted<D>(uD, i, j, k, -1)) * inv_h[D];
+  const double sm =
+      2.0 * mixture_mu(psi, mu_f, dmu, i, j, k) * (uD(i, j, k) - shifted<D>(uD, i, j, k, -1)) * inv_h[D];
   constexpr int a1 = Unit<E1>::i, b1 = Unit<E1>::j, c1 = Unit<E1>::k;
   constexpr int a2 = Unit<E2>::i, b2 = Unit<E2>::j, c2 = Unit<E2>::k;
   return (sp - sm) * inv_h[D] +
-         (mu_edge(E1, i, j, k) * strain_edge<D, E1>(vel, inv_h, i, j, k) -
-          mu_edge(E1, i - a1, j - b1, k - c1) * strain_edge<D, E1>(vel, inv_h, i - a1, j - b1, k - c1)) *
+         (mixture_mu_edge<D, E1>(psi, mu_f, dmu, i, j, k) * strain_edge<D, E1>(vel, inv_h, i, j, k) -
+          mixture_mu_edge<D, E1>(psi, mu_f, dmu, i - a1, j - b1, k - c1) *
+              strain_edge<D, E1>(vel, inv_h, i - a1, j - b1, k - c1)) *
              inv_h[E1] +
-         (mu_edge(E2, i, j, k) * strain_edge<D, E2>(vel, inv_h, i, j, k) -
-          mu_edge(E2, i - a2, j - b2, k - c2) * strain_edge<D, E2>(vel, inv_h, i - a2, j - b2, k - c2)) *
+         (mixture_mu_edge<D, E2>(psi, mu_f, dmu, i, j, k) * strain_edge<D, E2>(vel, inv_h, i, j, k) -
+          mixture_mu_edge<D, E2>(psi, mu_f, dmu, i - a2, j - b2, k - c2) *
+              strain_edge<D, E2>(vel, inv_h, i - a2, j - b2, k - c2)) *
              inv_h[E2];
 }
 

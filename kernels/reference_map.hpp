@@ -305,18 +305,17 @@ inline void extrapolate_wall_ghosts(const Vector3& q, int dir, int n_interior, c
   Box plane = all;
   plane.lo[dir] = 0;
   plane.hi[dir] = 1;
+  // (i, s, k) for dir = 1, (i, j, s) for dir = 2: s is the wall-normal index
+  const int sj = dir == 1, sk = dir == 2;
   for (int a = 0; a < 3; ++a) {
     const Field3 f = q.c[a];
     for_each_cell("eulerfsi::refmap::wall_ghosts", plane, KOKKOS_LAMBDA(int i, int j, int k) {
+      const int j0 = j * (1 - sj), k0 = k * (1 - sk);
+      const double qlo = f(i, j0 + sj * lo, k0 + sk * lo), qlo1 = f(i, j0 + sj * (lo + 1), k0 + sk * (lo + 1));
+      const double qhi = f(i, j0 + sj * hi, k0 + sk * hi), qhi1 = f(i, j0 + sj * (hi - 1), k0 + sk * (hi - 1));
       for (int m = 1; m <= kGhost; ++m) {
-        const int idx[2][2] = {{lo - m, lo}, {hi + m, hi}};
-        for (int side = 0; side < 2; ++side) {
-          const int g = idx[side][0], b0 = idx[side][1], b1 = side == 0 ? lo + 1 : hi - 1;
-          auto at = [&](int s) -> double& {
-            return dir == 1 ? f(i, s, k) : f(i, j, s);
-          };
-          at(g) = at(b0) - m * (at(b1) - at(b0));
-        }
+        f(i, j0 + sj * (lo - m), k0 + sk * (lo - m)) = qlo - m * (qlo1 - qlo);
+        f(i, j0 + sj * (hi + m), k0 + sk * (hi + m)) = qhi - m * (qhi1 - qhi);
       }
     });
   }

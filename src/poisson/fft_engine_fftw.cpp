@@ -27,18 +27,18 @@ class FftwEngine final : public FftEngine {
   FftwEngine& operator=(const FftwEngine&) = delete;
 
   void r2c(int n, int batch, double* in, Complex* out) override {
-    run(plan(Kind::R2C, n, batch, in, out, [&] {
+    run(plan(Kind::R2C, n, batch, in, out, [=] {
       return fftw_plan_many_dft_r2c(1, &n, batch, in, nullptr, 1, n, as_fftw(out), nullptr, 1, n / 2 + 1, kFlags);
     }));
   }
   void c2r(int n, int batch, Complex* in, double* out) override {
-    run(plan(Kind::C2R, n, batch, in, out, [&] {
+    run(plan(Kind::C2R, n, batch, in, out, [=] {
       return fftw_plan_many_dft_c2r(1, &n, batch, as_fftw(in), nullptr, 1, n / 2 + 1, out, nullptr, 1, n, kFlags);
     }));
   }
   void c2c(int n, int batch, Complex* data, int sign) override {
     const Kind kind = sign < 0 ? Kind::Forward : Kind::Backward;
-    run(plan(kind, n, batch, data, data, [&] {
+    run(plan(kind, n, batch, data, data, [=] {
       return fftw_plan_many_dft(1, &n, batch, as_fftw(data), nullptr, 1, n, as_fftw(data), nullptr, 1, n,
                                 sign < 0 ? FFTW_FORWARD : FFTW_BACKWARD, kFlags);
     }));

@@ -27,18 +27,8 @@ constexpr double kSharpenWidth = 0.5;
 // Sub-samples per direction for the initial cell volume fraction: error ~ 1/n^2 of a surface cell.
 constexpr int kSubsamples = 8;
 
-}  // namespace
-
-kernels::Tensor6 make_tensor(const Grid& g, const char* label) {
-  kernels::Tensor6 t;
-  for (int c = 0; c < kernels::kTensorComponents; ++c) t.c[c] = g.make_field(label);
-  return t;
-}
-
-void set_identity(const kernels::Tensor6& b) {
-  for (int c = 0; c < kernels::kTensorComponents; ++c) Kokkos::deep_copy(b.c[c], c < 3 ? 1.0 : 0.0);
-}
-
+// psi = fraction of n^3 sub-sampled points of each cell inside the body's initial shape
+// (sphere: nearest periodic image).
 void fill_volume_fraction(const Field3& psi, const Grid& g, const SolidConfig& s, int n) {
   const double hx = g.h[0], hy = g.h[1], hz = g.h[2], lx = g.length[0];
   // periods for the nearest image (0: a wall direction, no images)
@@ -69,6 +59,18 @@ void fill_volume_fraction(const Field3& psi, const Grid& g, const SolidConfig& s
         }
     psi(i, j, k) = double(inside) / double(n * n * n);
   });
+}
+
+}  // namespace
+
+kernels::Tensor6 make_tensor(const Grid& g, const char* label) {
+  kernels::Tensor6 t;
+  for (int c = 0; c < kernels::kTensorComponents; ++c) t.c[c] = g.make_field(label);
+  return t;
+}
+
+void set_identity(const kernels::Tensor6& b) {
+  for (int c = 0; c < kernels::kTensorComponents; ++c) Kokkos::deep_copy(b.c[c], c < 3 ? 1.0 : 0.0);
 }
 
 PaperModel::PaperModel(const CaseConfig&, const Grid& grid, const BoundaryConditions& bc, const Comm& comm)

@@ -27,9 +27,7 @@ class PaperModel final : public SolidModel {
   kernels::Tensor6 b_rhs_, b_rhs_old_;
 };
 
-// psi = fraction of n^3 sub-sampled points of each cell inside the body's initial shape
-// (sphere: nearest periodic image); shared by the models that start from a volume fraction.
-void fill_volume_fraction(const Field3& psi, const Grid& g, const SolidConfig& s, int n);
+// B = I, and a tensor field on the grid (shared with the other models and SolidPhase).
 void set_identity(const kernels::Tensor6& b);
 kernels::Tensor6 make_tensor(const Grid& g, const char* label);
 

@@ -107,7 +107,7 @@ void ReferenceMapModel::advance_substep(SolidBody& body, const kernels::Velocity
   // B before the substep, ghosts included (the elastic force reads them); beyond, both are I
   copy_tensor(body.b_prev, body.b, grown_into_ghosts(box));
   derive_solid(body, box);
-  if (correct_volume_) correct_volume(body, box);
+  correct_volume(body, box);
   update_active_box();
 }
 

@@ -26,10 +26,8 @@ class ReferenceMapModel final : public SolidModel {
   void restore_scalars(const std::map<std::string, double>& s) override;
   void fill_ghosts(SolidBody& body) override;
 
-  // The level shift that keeps the volume (0 without drift) and the volume it keeps.
+  // The level shift that keeps the volume (0 without drift).
   double level_shift() const { return shape_.shift; }
-  double target_volume() const { return volume0_; }
-  const kernels::Vector3& displacement() const { return q_; }
 
  private:
   void fill_map_ghosts();
@@ -50,7 +48,6 @@ class ReferenceMapModel final : public SolidModel {
   // kernel runs on it; outside it q is not used, psi = 0 and B = I.
   Box active_;
   double volume0_ = 0.0;
-  bool correct_volume_ = true;
 };
 
 }  // namespace eulerfsi

@@ -1,5 +1,6 @@
 #pragma once
 // Builds small in-memory cases and runs the flow solver on them, for validation tests.
+#include <algorithm>
 #include <cmath>
 #include <functional>
 
@@ -39,6 +40,19 @@ struct CoupledCase {
   }
   ParticleState particle() { return tracker.measure(solids, flow.state())[0]; }
 };
+
+// max |u|, |v|, |w| over the owned cells of every rank.
+inline double max_abs_velocity(const CoupledCase& run) {
+  const Box box = run.grid.interior();
+  double m = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    auto u = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), run.flow.state().vel.c[c]);
+    for (int i = box.lo[0]; i < box.hi[0]; ++i)
+      for (int j = box.lo[1]; j < box.hi[1]; ++j)
+        for (int k = box.lo[2]; k < box.hi[2]; ++k) m = std::max(m, std::fabs(u(i, j, k)));
+  }
+  return run.comm.max(m);
+}
 
 // Advances the flow (and the bodies, if given) to t_end with the stable step; calls `each` after
 // every step.
