@@ -24,8 +24,10 @@ using bench::pipe_case;
 
 void BM_Step(benchmark::State& state) {
   const Comm comm;
+  // particle: 0 none, 1 the paper's model, 2 the reference map
   const bool particle = state.range(3) != 0;
-  const CaseConfig cfg = pipe_case(int(state.range(0)), int(state.range(1)), int(state.range(2)), particle);
+  const SolidModelKind model = state.range(3) == 2 ? SolidModelKind::ReferenceMap : SolidModelKind::Paper;
+  const CaseConfig cfg = pipe_case(int(state.range(0)), int(state.range(1)), int(state.range(2)), particle, model);
   const Grid grid = make_grid(cfg, comm);
   FlowSolver flow(cfg, grid, comm);
   SolidPhase solids(cfg, grid, flow.boundaries(), comm);
@@ -61,7 +63,8 @@ void BM_Step(benchmark::State& state) {
   state.counters["cells_per_second"] = benchmark::Counter(cells * steps / total_s);
   state.counters["threads"] = benchmark::Counter(ExecSpace().concurrency());
   state.counters["ranks"] = benchmark::Counter(comm.size());
-  state.SetLabel(std::string(particle ? "pipe+sphere " : "pipe ") + compat::default_backend_name());
+  static const char* labels[3] = {"pipe ", "pipe+sphere(paper) ", "pipe+sphere(refmap) "};
+  state.SetLabel(std::string(labels[state.range(3)]) + compat::default_backend_name());
 }
 
 BENCHMARK(BM_Step)
@@ -71,6 +74,11 @@ BENCHMARK(BM_Step)
     ->Args({128, 64, 64, 0})
     ->Args({64, 64, 64, 1})
     ->Args({128, 64, 64, 1})
+    ->Args({64, 64, 64, 2})
+    ->Args({128, 64, 64, 2})
+    ->Args({160, 80, 80, 0})
+    ->Args({160, 80, 80, 1})
+    ->Args({160, 80, 80, 2})
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 

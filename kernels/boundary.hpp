@@ -54,12 +54,13 @@ struct GhostLine {
   }
 };
 
-// n: owned cells along `dir` (1 or 2); the ghost layers along `dir` are filled over every
-// (x, other) index, ghosts included, so edges and corners follow.
-inline void fill_ghosts(const Field3& f, int dir, int n, GhostRule rule, double wall_lo, double wall_hi) {
-  const int e0 = static_cast<int>(f.extent(0));
+// n: owned cells along `dir` (1 or 2); the ghost layers along `dir` are filled over the x-planes
+// [x_lo, x_hi) (default: all, ghosts included) and every other index, so edges and corners follow.
+inline void fill_ghosts(const Field3& f, int dir, int n, GhostRule rule, double wall_lo, double wall_hi, int x_lo = 0,
+                        int x_hi = -1) {
+  const int e0 = x_hi < 0 ? static_cast<int>(f.extent(0)) : x_hi;
   const int eb = static_cast<int>(f.extent(dir == 1 ? 2 : 1));
-  const Policy2 plane({0, 0}, {e0, eb});
+  const Policy2 plane({x_lo, 0}, {e0 > x_lo ? e0 : x_lo, eb});
   if (dir == 1) {
     Kokkos::parallel_for("eulerfsi::boundary::ghosts_y", plane, GhostLine<1>{f, n, rule, wall_lo, wall_hi});
   } else {

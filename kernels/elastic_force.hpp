@@ -90,6 +90,11 @@ inline void add_elastic_force(const Velocity& rhs, const Field3& psi, const Tens
                        ElasticForce<2>{rhs.c[2], psi, b, b_prev, G, {ih0, ih1, ih2}});
 }
 
+// f = value on `box` (a Box, unlike Kokkos::deep_copy on a whole View).
+inline void fill_box(const Field3& f, double value, const Box& box) {
+  for_each_cell("eulerfsi::fill_box", box, KOKKOS_LAMBDA(int i, int j, int k) { f(i, j, k) = value; });
+}
+
 // mu += psi dmu: the caller starts from mu = mu_f and adds each body with dmu = mu_s - mu_f,
 // giving mu = (1 - sum psi) mu_f + sum psi mu_s.
 inline void mixture_viscosity_add(const Field3& mu, const Field3& psi, double dmu, const Box& box) {

@@ -17,23 +17,25 @@ struct Velocity {
 //   F = uc_D^2 - 2 mu du_D/dx_D, with uc_D the centre average of the two faces of the cell.
 // Flux of D-momentum in direction E through the edge at (c + e_D/2 + e_E/2):
 //   F = (u_D u_E)_edge - mu_edge (du_D/dx_E + du_E/dx_D)
-// Uniform: mu holds one value everywhere (single phase), so the edge average is skipped.
+// Uniform: the viscosity is the constant mu_uniform wherever the kernel runs (the field mu is
+// not read: one stream less, and no edge averages).
 // rhs_D = -(F_DD(i+e_D) - F_DD(i))/h_D - sum_{E != D} (F_DE(i) - F_DE(i - e_E))/h_E, written on
 // raw pointers with unit offsets s_A (all fields share one layout): the compiler then sees that
 // rhs does not alias the inputs and vectorises the k loop on CPUs.
 template <int D, int E, bool Uniform>
 KOKKOS_FORCEINLINE_FUNCTION double shear_flux_at(const double* KOKKOS_RESTRICT uD, const double* KOKKOS_RESTRICT uE,
-                                                  const double* KOKKOS_RESTRICT mu, long c, long sD, long sE,
-                                                  double ihD, double ihE) {
-  const double mu_edge = Uniform ? mu[c] : 0.25 * (mu[c] + mu[c + sD] + mu[c + sE] + mu[c + sD + sE]);
+                                                  const double* KOKKOS_RESTRICT mu, double mu_uniform, long c, long sD,
+                                                  long sE, double ihD, double ihE) {
+  const double mu_edge = Uniform ? mu_uniform : 0.25 * (mu[c] + mu[c + sD] + mu[c + sE] + mu[c + sD + sE]);
   return 0.25 * (uD[c] + uD[c + sE]) * (uE[c] + uE[c + sD]) -
          mu_edge * ((uD[c + sE] - uD[c]) * ihE + (uE[c + sD] - uE[c]) * ihD);
 }
 
+template <bool Uniform>
 KOKKOS_FORCEINLINE_FUNCTION double normal_flux_at(const double* KOKKOS_RESTRICT uD, const double* KOKKOS_RESTRICT mu,
-                                                   long c, long sD, double ihD) {
+                                                   double mu_uniform, long c, long sD, double ihD) {
   const double uc = 0.5 * (uD[c] + uD[c - sD]);
-  return uc * uc - 2.0 * mu[c] * (uD[c] - uD[c - sD]) * ihD;
+  return uc * uc - 2.0 * (Uniform ? mu_uniform : mu[c]) * (uD[c] - uD[c - sD]) * ihD;
 }
 
 template <int D, bool Uniform>
@@ -43,6 +45,7 @@ struct MomentumRhs {
   Field3 rhs;
   Field3 u0, u1, u2;  // u, v, w
   Field3 mu;
+  double mu_uniform;
   double inv_h[3];
 
   KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k) const {
@@ -51,40 +54,46 @@ struct MomentumRhs {
     const double* KOKKOS_RESTRICT uD = (D == 0 ? u0 : (D == 1 ? u1 : u2)).data();
     const double* KOKKOS_RESTRICT uE1 = (E1 == 0 ? u0 : (E1 == 1 ? u1 : u2)).data();
     const double* KOKKOS_RESTRICT uE2 = (E2 == 0 ? u0 : (E2 == 1 ? u1 : u2)).data();
-    const double* KOKKOS_RESTRICT m = mu.data();
+    const double* KOKKOS_RESTRICT m = Uniform ? nullptr : mu.data();
+    const double mu0 = mu_uniform;
     const long sD = st[D], s1 = st[E1], s2 = st[E2];
     const double ihD = inv_h[D], ih1 = inv_h[E1], ih2 = inv_h[E2];
-    const double fn = (normal_flux_at(uD, m, c + sD, sD, ihD) - normal_flux_at(uD, m, c, sD, ihD)) * ihD;
-    const double f1 = (shear_flux_at<D, E1, Uniform>(uD, uE1, m, c, sD, s1, ihD, ih1) -
-                       shear_flux_at<D, E1, Uniform>(uD, uE1, m, c - s1, sD, s1, ihD, ih1)) *
+    const double fn =
+        (normal_flux_at<Uniform>(uD, m, mu0, c + sD, sD, ihD) - normal_flux_at<Uniform>(uD, m, mu0, c, sD, ihD)) * ihD;
+    const double f1 = (shear_flux_at<D, E1, Uniform>(uD, uE1, m, mu0, c, sD, s1, ihD, ih1) -
+                       shear_flux_at<D, E1, Uniform>(uD, uE1, m, mu0, c - s1, sD, s1, ihD, ih1)) *
                       ih1;
-    const double f2 = (shear_flux_at<D, E2, Uniform>(uD, uE2, m, c, sD, s2, ihD, ih2) -
-                       shear_flux_at<D, E2, Uniform>(uD, uE2, m, c - s2, sD, s2, ihD, ih2)) *
+    const double f2 = (shear_flux_at<D, E2, Uniform>(uD, uE2, m, mu0, c, sD, s2, ihD, ih2) -
+                       shear_flux_at<D, E2, Uniform>(uD, uE2, m, mu0, c - s2, sD, s2, ihD, ih2)) *
                       ih2;
     rhs.data()[c] = -(fn + f1 + f2);
   }
 };
 
 template <bool Uniform>
-inline void momentum_rhs_impl(const Velocity& rhs, const Velocity& u, const Field3& mu, const double h[3], const Box& box) {
+inline void momentum_rhs_impl(const Velocity& rhs, const Velocity& u, const Field3& mu, double mu_uniform,
+                              const double h[3], const Box& box, const char* const labels[3]) {
   const double inv_h[3] = {1.0 / h[0], 1.0 / h[1], 1.0 / h[2]};
-  MomentumRhs<0, Uniform> fx{rhs.c[0], u.c[0], u.c[1], u.c[2], mu, {inv_h[0], inv_h[1], inv_h[2]}};
-  MomentumRhs<1, Uniform> fy{rhs.c[1], u.c[0], u.c[1], u.c[2], mu, {inv_h[0], inv_h[1], inv_h[2]}};
-  MomentumRhs<2, Uniform> fz{rhs.c[2], u.c[0], u.c[1], u.c[2], mu, {inv_h[0], inv_h[1], inv_h[2]}};
-  for_each_cell("eulerfsi::momentum::rhs_u", box, fx);
-  for_each_cell("eulerfsi::momentum::rhs_v", box, fy);
-  for_each_cell("eulerfsi::momentum::rhs_w", box, fz);
+  MomentumRhs<0, Uniform> fx{rhs.c[0], u.c[0], u.c[1], u.c[2], mu, mu_uniform, {inv_h[0], inv_h[1], inv_h[2]}};
+  MomentumRhs<1, Uniform> fy{rhs.c[1], u.c[0], u.c[1], u.c[2], mu, mu_uniform, {inv_h[0], inv_h[1], inv_h[2]}};
+  MomentumRhs<2, Uniform> fz{rhs.c[2], u.c[0], u.c[1], u.c[2], mu, mu_uniform, {inv_h[0], inv_h[1], inv_h[2]}};
+  for_each_cell(labels[0], box, fx);
+  for_each_cell(labels[1], box, fy);
+  for_each_cell(labels[2], box, fz);
 }
 
-// Fills rhs[D] over `box` for all three components. uniform_viscosity: mu is the same everywhere
-// (no solid), which saves the edge averages.
-inline void momentum_rhs(const Velocity& rhs, const Velocity& u, const Field3& mu, const double h[3], const Box& box,
-                         bool uniform_viscosity = false) {
-  if (uniform_viscosity) {
-    momentum_rhs_impl<true>(rhs, u, mu, h, box);
-  } else {
-    momentum_rhs_impl<false>(rhs, u, mu, h, box);
-  }
+// Fills rhs[D] over `box` for all three components with the constant viscosity mu.
+inline void momentum_rhs(const Velocity& rhs, const Velocity& u, double mu, const double h[3], const Box& box) {
+  static const char* const labels[3] = {"eulerfsi::momentum::rhs_u", "eulerfsi::momentum::rhs_v",
+                                        "eulerfsi::momentum::rhs_w"};
+  momentum_rhs_impl<true>(rhs, u, Field3(), mu, h, box, labels);
+}
+
+// The same with the viscosity field mu (cell centres, ghosts filled), edges averaged.
+inline void momentum_rhs(const Velocity& rhs, const Velocity& u, const Field3& mu, const double h[3], const Box& box) {
+  static const char* const labels[3] = {"eulerfsi::momentum::rhs_u_mixture", "eulerfsi::momentum::rhs_v_mixture",
+                                        "eulerfsi::momentum::rhs_w_mixture"};
+  momentum_rhs_impl<false>(rhs, u, mu, 0.0, h, box, labels);
 }
 
 }  // namespace eulerfsi::kernels

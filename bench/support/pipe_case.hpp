@@ -1,11 +1,12 @@
 #pragma once
 // The benchmark case: a laminar pipe at Re = 100 with cubic cells, optionally one soft
-// particle (d = 0.2, We = 1) at r/R = 0.2828 as in the paper.
+// particle (d = 0.2, We = 1) at r/R = 0.2828 as in the paper, carried by the paper's model or the
+// reference map.
 #include "config/case_config.hpp"
 
 namespace eulerfsi::bench {
 
-inline CaseConfig pipe_case(int nx, int ny, int nz, bool particle) {
+inline CaseConfig pipe_case(int nx, int ny, int nz, bool particle, SolidModelKind model = SolidModelKind::Paper) {
   CaseConfig cfg;
   cfg.source = "<bench>";
   cfg.domain.geometry = Geometry::Pipe;
@@ -19,6 +20,7 @@ inline CaseConfig pipe_case(int nx, int ny, int nz, bool particle) {
     s.diameter = 0.2;
     s.center = {0.5 * cfg.domain.length[0], 0.2828 * 0.5, 0.0};  // r/R = 0.2828 with R = 1/2
     s.We = 1.0;
+    s.model = model;
     cfg.solids.push_back(s);
   }
   return cfg;

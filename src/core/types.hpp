@@ -34,6 +34,29 @@ struct Box {
     for (int d = 0; d < 3; ++d) n *= (hi[d] > lo[d] ? hi[d] - lo[d] : 0);
     return n;
   }
+  bool empty() const { return size() == 0; }
+  // This box grown by `by` cells on every side, cut to `limit` (empty stays empty).
+  Box grown(int by, const Box& limit) const {
+    if (empty()) return *this;
+    Box g;
+    for (int d = 0; d < 3; ++d) {
+      g.lo[d] = lo[d] - by > limit.lo[d] ? lo[d] - by : limit.lo[d];
+      g.hi[d] = hi[d] + by < limit.hi[d] ? hi[d] + by : limit.hi[d];
+    }
+    return g;
+  }
 };
+
+// The smallest box holding both (an empty box holds nothing).
+inline Box bounding_box(const Box& a, const Box& b) {
+  if (a.empty()) return b;
+  if (b.empty()) return a;
+  Box u;
+  for (int d = 0; d < 3; ++d) {
+    u.lo[d] = a.lo[d] < b.lo[d] ? a.lo[d] : b.lo[d];
+    u.hi[d] = a.hi[d] > b.hi[d] ? a.hi[d] : b.hi[d];
+  }
+  return u;
+}
 
 }  // namespace eulerfsi

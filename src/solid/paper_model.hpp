@@ -14,6 +14,7 @@ class PaperModel final : public SolidModel {
   void set_initial_condition(SolidBody& body) override;
   void advance_substep(SolidBody& body, const kernels::Velocity& vel, double dt, int substep) override;
   void fill_ghosts(SolidBody& body) override;
+  Box active_box() const override { return grid_.interior(); }
 
  private:
   void sharpen(SolidBody& body);

@@ -99,10 +99,10 @@ void ReferenceMapModel::advance_substep(SolidBody& body, const kernels::Velocity
   kernels::reference_map_rhs(rhs_, q_, level_, vel, grid_.h, box);
   kernels::rk3_vector_update(q_, rhs_, rhs_old_, dt, Rk3::gamma[substep], Rk3::zeta[substep], box);
   std::swap(rhs_, rhs_old_);
-  fill_map_ghosts();
+  fill_map_ghosts(box);
   // the body where it is now, then q outside it again from the body's own values
   kernels::classify_solid(level_, q_, shape_, centres_, kSolidReach, false, grid_.h, box);
-  bc_->fill_scalar(level_);
+  bc_->fill_scalar(level_, box);
   extrapolate(box);
   // B before the substep, ghosts included (the elastic force reads them); beyond, both are I
   copy_tensor(body.b_prev, body.b, grown_into_ghosts(box));
@@ -127,21 +127,25 @@ void ReferenceMapModel::correct_volume(SolidBody& body, const Box& region) {
 void ReferenceMapModel::extrapolate(const Box& region) {
   for (int sweep = 1; sweep <= kBand; ++sweep) {
     kernels::extrapolation_sweep(q_, level_, sweep, region);
-    fill_map_ghosts();
-    bc_->fill_scalar(level_);
+    fill_map_ghosts(region);
+    bc_->fill_scalar(level_, region);
   }
 }
 
 void ReferenceMapModel::derive_solid(SolidBody& body, const Box& region) {
   kernels::solid_from_map(body.psi, body.b, q_, level_, shape_, centres_, kHalfWidthCells, kMaxDerivedLevel, grid_.h, region);
-  bc_->fill_scalar(body.psi);
-  for (int c = 0; c < kernels::kTensorComponents; ++c) bc_->fill_scalar(body.b.c[c]);
+  bc_->fill_scalar(body.psi, region);
+  for (int c = 0; c < kernels::kTensorComponents; ++c) bc_->fill_scalar(body.b.c[c], region);
 }
 
 // The known cells move less than a cell per substep: their new bounding box is searched within
 // the old active box grown by the ghost width, ghosts included.
 void ReferenceMapModel::update_active_box() {
   const Box all = grid_.all(), interior = grid_.interior();
+  if (whole_slab_) {
+    active_ = interior;
+    return;
+  }
   Box search = all, known;
   // a rank without the body searches its whole slab: the body may enter from either side
   if (active_.size() > 0)
@@ -160,10 +164,19 @@ void ReferenceMapModel::update_active_box() {
 }
 
 // Periodic directions and ranks by the halo exchange (q is periodic); walls by linear extrapolation.
-void ReferenceMapModel::fill_map_ghosts() {
-  for (int a = 0; a < 3; ++a) bc_->fill_scalar(q_.c[a]);
-  for (int d = 1; d < 3; ++d)
-    if (grid_.bc[d] == Boundary::Wall) kernels::extrapolate_wall_ghosts(q_, d, grid_.n[d], grid_.all());
+// q changed only on `changed`: the wall ghosts are extrapolated again on its x-planes, and only at
+// a wall it comes within two cells of (the extrapolation reads the first two owned cells).
+void ReferenceMapModel::fill_map_ghosts(const Box& changed) {
+  for (int a = 0; a < 3; ++a) bc_->fill_scalar(q_.c[a], changed);
+  Box planes = grid_.all();
+  planes.lo[0] = changed.lo[0];
+  planes.hi[0] = changed.hi[0];
+  // near the x ends the halo exchange changed the ghost planes too
+  if (changed.empty() || changed.lo[0] < 2 * kGhost || changed.hi[0] > grid_.nx_local) planes = grid_.all();
+  for (int d = 1; d < 3; ++d) {
+    const bool near = changed.empty() || changed.lo[d] < kGhost + 2 || changed.hi[d] > kGhost + grid_.n[d] - 2;
+    if (grid_.bc[d] == Boundary::Wall && near) kernels::extrapolate_wall_ghosts(q_, d, grid_.n[d], planes);
+  }
 }
 
 std::vector<std::pair<std::string, Field3>> ReferenceMapModel::checkpoint_fields() {
@@ -180,7 +193,7 @@ void ReferenceMapModel::restore_scalars(const std::map<std::string, double>& s) 
 }
 
 void ReferenceMapModel::fill_ghosts(SolidBody& body) {
-  fill_map_ghosts();
+  fill_map_ghosts(grid_.interior());
   active_ = grid_.interior();  // searched again from the whole slab after a restore
   bc_->fill_scalar(level_);
   bc_->fill_scalar(body.psi);

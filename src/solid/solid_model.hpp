@@ -38,6 +38,10 @@ class SolidModel {
   virtual void restore_scalars(const std::map<std::string, double>&) {}
   // After a checkpoint was read: ghosts of everything the model holds.
   virtual void fill_ghosts(SolidBody& body) = 0;
+  // Owned cells (storage indices) outside which psi = 0 and B = I exactly, now and after the
+  // next substep's update: the shared solid kernels (mixture viscosity, elastic force,
+  // diagnostics) run on it only. Empty where the body is not on this rank.
+  virtual Box active_box() const = 0;
 };
 
 std::shared_ptr<SolidModel> make_solid_model(const SolidConfig& solid, const CaseConfig& cfg, const Grid& grid,

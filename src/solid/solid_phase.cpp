@@ -53,14 +53,28 @@ void SolidPhase::advance_substep(const kernels::Velocity& vel, double dt, int su
   for (auto& body : bodies_) body.model->advance_substep(body, vel, dt, substep);
 }
 
-void SolidPhase::mixture_viscosity(const Field3& mu, double mu_fluid) const {
-  Kokkos::deep_copy(mu, mu_fluid);
-  for (const auto& body : bodies_) kernels::mixture_viscosity_add(mu, body.psi, body.mu_s - mu_fluid, grid_.all());
+Box SolidPhase::active_box() const {
+  Box box{{0, 0, 0}, {0, 0, 0}};
+  for (const auto& body : bodies_) box = bounding_box(box, body.model->active_box());
+  return box;
 }
 
+// mu = mu_f where the previous call wrote, then mu_f + sum psi (mu_s - mu_f) on the bodies' box
+// with its ghosts (psi = 0 beyond it).
+void SolidPhase::mixture_viscosity(const Field3& mu, double mu_fluid) {
+  kernels::fill_box(mu, mu_fluid, mu_region_);
+  mu_region_ = active_box().grown(kGhost, grid_.all());
+  kernels::fill_box(mu, mu_fluid, mu_region_);
+  for (const auto& body : bodies_) kernels::mixture_viscosity_add(mu, body.psi, body.mu_s - mu_fluid, mu_region_);
+}
+
+// The force on a face reads psi one cell beyond it: the body's active box grown by one.
 void SolidPhase::add_elastic_force(const kernels::Velocity& rhs) const {
-  for (const auto& body : bodies_)
-    kernels::add_elastic_force(rhs, body.psi, body.b, body.b_prev, body.G, grid_.h, grid_.interior());
+  for (const auto& body : bodies_) {
+    const Box faces = body.model->active_box().grown(1, grid_.interior());
+    if (faces.empty()) continue;
+    kernels::add_elastic_force(rhs, body.psi, body.b, body.b_prev, body.G, grid_.h, faces);
+  }
 }
 
 double SolidPhase::max_wave_speed() const {

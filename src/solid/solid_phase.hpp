@@ -29,12 +29,15 @@ class SolidPhase final : public SolidCoupling {
   void set_initial_condition();
   // Initial velocity "rest": u_face *= 1 - psi_face for the bodies that start at rest.
   void stop_bodies_at_rest(const kernels::Velocity& vel) const;
+  // The bounding box of every body's active box (empty: no body on this rank).
+  Box active_box() const;
   // Sum of every body's psi (for output), into `out`.
   void total_volume_fraction(const Field3& out) const;
 
   // SolidCoupling: what the momentum equation needs
   void advance_substep(const kernels::Velocity& vel, double dt, int substep) override;
-  void mixture_viscosity(const Field3& mu, double mu_fluid) const override;
+  void mixture_viscosity(const Field3& mu, double mu_fluid) override;
+  Box viscosity_region() const override { return mu_region_; }
   void add_elastic_force(const kernels::Velocity& rhs) const override;
   double max_wave_speed() const override;
 
@@ -49,6 +52,7 @@ class SolidPhase final : public SolidCoupling {
   Grid grid_;
   Comm comm_;
   std::vector<SolidBody> bodies_;
+  Box mu_region_{{0, 0, 0}, {0, 0, 0}};  // where mixture_viscosity() last wrote
 };
 
 // The state a run starts from: the flow's initial condition, the bodies' shapes with B = I, zero

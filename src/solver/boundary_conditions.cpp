@@ -47,4 +47,23 @@ void BoundaryConditions::fill_scalar(const Field3& f) const {
   }
 }
 
+void BoundaryConditions::fill_scalar(const Field3& f, const Box& changed) const {
+  if (changed.empty()) {
+    fill_scalar(f);
+    return;
+  }
+  exchange_x(f, grid_, comm_);
+  // the x-ghost planes mirror the first and last kGhost owned planes (here or on a neighbour)
+  const int x_end = kGhost + grid_.nx_local;
+  const bool x_edge = changed.lo[0] < 2 * kGhost || changed.hi[0] > x_end - kGhost;
+  const int x_lo = x_edge ? 0 : changed.lo[0], x_hi = x_edge ? int(f.extent(0)) : changed.hi[0];
+  for (int dir = 1; dir <= 2; ++dir) {
+    // the ghosts along dir mirror the first and last kGhost owned cells
+    const bool near = changed.lo[dir] < 2 * kGhost || changed.hi[dir] > grid_.n[dir];
+    if (!near) continue;
+    const GhostRule rule = grid_.bc[dir] == Boundary::Periodic ? GhostRule::Periodic : GhostRule::Even;
+    kernels::fill_ghosts(f, dir, grid_.n[dir], rule, 0.0, 0.0, x_lo, x_hi);
+  }
+}
+
 }  // namespace eulerfsi

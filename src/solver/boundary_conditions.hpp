@@ -24,6 +24,10 @@ class BoundaryConditions {
   void set_frame_velocity(double frame_u) { frame_u_ = frame_u; }
   // Cell-centred scalar with zero normal gradient at walls (pressure, psi, B components).
   void fill_scalar(const Field3& f) const;
+  // The same for a field that changed only inside `changed` (storage indices) since its ghosts were
+  // last filled: the y/z ghosts are refreshed only on the x-planes of `changed`, and only along a
+  // direction whose boundary `changed` comes within a ghost width of. Empty: a full fill.
+  void fill_scalar(const Field3& f, const Box& changed) const;
 
  private:
   Grid grid_;

@@ -166,8 +166,11 @@ void FlowSolver::advance(double t, double dt, SolidCoupling* solids) {
       solids->advance_substep(vel, dt, s);
       solids->mixture_viscosity(mu_, mu_fluid_);
     }
-    // (ii) explicit momentum right-hand side: advection + viscous (+ elastic stress)
-    kernels::momentum_rhs(rhs_new_, vel, mu_, grid_.h, box, solids == nullptr);
+    // (ii) explicit momentum right-hand side: advection + viscous (+ elastic stress); the
+    // mixture viscosity only where it differs from mu_f (a face's stencil reads mu one cell away)
+    kernels::momentum_rhs(rhs_new_, vel, mu_fluid_, grid_.h, box);
+    const Box mixture = solids ? solids->viscosity_region().grown(1, box) : Box{{0, 0, 0}, {0, 0, 0}};
+    if (!mixture.empty()) kernels::momentum_rhs(rhs_new_, vel, mu_, grid_.h, mixture);
     if (solids) solids->add_elastic_force(rhs_new_);
     // (iii) predictor with implicit penalization of the pipe wall
     const double penal = alpha_dt / cfg_.flow.penalization_eta;
