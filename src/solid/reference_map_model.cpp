@@ -102,7 +102,7 @@ void ReferenceMapModel::advance_substep(SolidBody& body, const kernels::Velocity
   fill_map_ghosts(box);
   // the body where it is now, then q outside it again from the body's own values
   kernels::classify_solid(level_, q_, shape_, centres_, kSolidReach, false, grid_.h, box);
-  bc_->fill_scalar(level_, box);
+  fill(level_, box);
   extrapolate(box);
   // B before the substep, ghosts included (the elastic force reads them); beyond, both are I
   copy_tensor(body.b_prev, body.b, grown_into_ghosts(box));
@@ -128,14 +128,14 @@ void ReferenceMapModel::extrapolate(const Box& region) {
   for (int sweep = 1; sweep <= kBand; ++sweep) {
     kernels::extrapolation_sweep(q_, level_, sweep, region);
     fill_map_ghosts(region);
-    bc_->fill_scalar(level_, region);
+    fill(level_, region);
   }
 }
 
 void ReferenceMapModel::derive_solid(SolidBody& body, const Box& region) {
   kernels::solid_from_map(body.psi, body.b, q_, level_, shape_, centres_, kHalfWidthCells, kMaxDerivedLevel, grid_.h, region);
-  bc_->fill_scalar(body.psi, region);
-  for (int c = 0; c < kernels::kTensorComponents; ++c) bc_->fill_scalar(body.b.c[c], region);
+  fill(body.psi, region);
+  for (int c = 0; c < kernels::kTensorComponents; ++c) fill(body.b.c[c], region);
 }
 
 // The known cells move less than a cell per substep: their new bounding box is searched within
@@ -166,8 +166,9 @@ void ReferenceMapModel::update_active_box() {
 // Periodic directions and ranks by the halo exchange (q is periodic); walls by linear extrapolation.
 // q changed only on `changed`: the wall ghosts are extrapolated again on its x-planes, and only at
 // a wall it comes within two cells of (the extrapolation reads the first two owned cells).
-void ReferenceMapModel::fill_map_ghosts(const Box& changed) {
-  for (int a = 0; a < 3; ++a) bc_->fill_scalar(q_.c[a], changed);
+void ReferenceMapModel::fill_map_ghosts(const Box& changed_box) {
+  const Box changed = whole_slab_ ? Box{{0, 0, 0}, {0, 0, 0}} : changed_box;  // empty: everywhere
+  for (int a = 0; a < 3; ++a) fill(q_.c[a], changed);
   Box planes = grid_.all();
   planes.lo[0] = changed.lo[0];
   planes.hi[0] = changed.hi[0];
@@ -176,6 +177,16 @@ void ReferenceMapModel::fill_map_ghosts(const Box& changed) {
   for (int d = 1; d < 3; ++d) {
     const bool near = changed.empty() || changed.lo[d] < kGhost + 2 || changed.hi[d] > kGhost + grid_.n[d] - 2;
     if (grid_.bc[d] == Boundary::Wall && near) kernels::extrapolate_wall_ghosts(q_, d, grid_.n[d], planes);
+  }
+}
+
+// Ghosts of a field that changed only on `changed` (all of them on the whole-slab path, which
+// the box path is tested against).
+void ReferenceMapModel::fill(const Field3& f, const Box& changed) const {
+  if (whole_slab_) {
+    bc_->fill_scalar(f);
+  } else {
+    bc_->fill_scalar(f, changed);
   }
 }
 

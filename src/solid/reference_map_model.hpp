@@ -39,6 +39,7 @@ class ReferenceMapModel final : public SolidModel {
 
  private:
   void fill_map_ghosts(const Box& changed);
+  void fill(const Field3& f, const Box& changed) const;
   void extrapolate(const Box& region);
   void derive_solid(SolidBody& body, const Box& region);
   void update_active_box();

@@ -2,11 +2,16 @@
 // the mixture viscosity and its momentum stencil on that box grown by their reach, and the ghost
 // fills of the solid fields only where the box changed them. None of that may change the result:
 // the same run with every kernel on the whole slab must give the same psi, B, u and p to
-// round-off. The case is chosen to exercise every boundary of the box logic: two deforming
-// reference-map spheres in a pipe whose grid is at rest, one straddling the periodic x boundary
-// (it wraps: its box is the whole x range on one rank, and sits across the rank boundary on two)
-// and one straddling x = Lx/2 (the boundary between the two ranks' slabs), both carried ~2 cells
-// downstream over the run, at different distances from the pipe wall.
+// round-off. The cases are chosen to exercise every boundary of the box logic, with deforming
+// reference-map spheres on a grid at rest carried several cells downstream over the run:
+//  - pipe: one sphere straddling the periodic x boundary (it wraps: its box is the whole x range
+//    on one rank, and sits across the rank boundary on two) and one straddling x = Lx/2 (the
+//    boundary between the two ranks' slabs);
+//  - channel (walls in y, periodic z): one sphere with its edge 2.5 cells from the lower wall (the
+//    wall extrapolation of the map runs on its x-planes only) and one straddling the periodic z
+//    boundary (so do the ghost fills along z).
+// (A sphere both at a wall and across the periodic z boundary is a known defect of the reference
+// map, docs/STATUS.md: it diverges with or without the box.)
 //
 // Tolerance: both runs do the same arithmetic on every cell where a body is, except the order of
 // the reductions (volume and area sums over a box instead of the slab) and the mixture viscosity's
@@ -16,6 +21,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 
@@ -33,6 +39,21 @@ CaseConfig two_spheres() {
     SolidConfig s;
     s.diameter = 0.25;
     s.center = {x, x < 0.1 ? 0.12 : -0.05, x < 0.1 ? 0.0 : 0.08};
+    s.We = 0.5;
+    s.model = SolidModelKind::ReferenceMap;
+    cfg.solids.push_back(s);
+  }
+  return cfg;
+}
+
+CaseConfig spheres_at_wall_and_z_boundary() {
+  CaseConfig cfg = test::small_case(Geometry::Channel, 32, 24, 24, 4.0 / 3.0, 1.0, 1.0, 100.0, InitialFlow::Laminar);
+  const double h = 1.0 / 24.0;
+  // edge 2.5 cells from the lower wall; across the periodic z boundary, far from the walls
+  for (const auto& c : {std::array<double, 3>{0.4, -0.5 + 0.125 + 2.5 * h, 0.0}, std::array<double, 3>{1.0, 0.15, 0.49}}) {
+    SolidConfig s;
+    s.diameter = 0.25;
+    s.center = c;
     s.We = 0.5;
     s.model = SolidModelKind::ReferenceMap;
     cfg.solids.push_back(s);
@@ -72,16 +93,18 @@ void compare(const test::CoupledCase& a, const Field3& fa, const Field3& fb, dou
 
 }  // namespace
 
-TEST(ActiveBox, SameFieldsAsTheWholeSlab) {
-  const CaseConfig cfg = two_spheres();
+class ActiveBox : public ::testing::TestWithParam<int> {};
+
+TEST_P(ActiveBox, SameFieldsAsTheWholeSlab) {
+  const CaseConfig cfg = GetParam() == 0 ? two_spheres() : spheres_at_wall_and_z_boundary();
   test::CoupledCase boxed(cfg), whole(cfg);
   constexpr int kSteps = 40;
   run(boxed, false, kSteps);
   run(whole, true, kSteps);
 
-  // the boxes were smaller than the slab where a body was (the test would be empty otherwise)
+  // each body's box is smaller than the slab (the test would compare nothing otherwise)
   const Box box = boxed.solids.active_box(), slab = boxed.grid.interior();
-  EXPECT_LT(box.size(), slab.size());
+  for (const auto& body : boxed.solids.bodies()) EXPECT_LT(body.model->active_box().size(), slab.size());
 
   double diff, scale, worst = 0.0;
   auto note = [&](double d, double s) { worst = std::max(worst, d / s); };
@@ -107,6 +130,8 @@ TEST(ActiveBox, SameFieldsAsTheWholeSlab) {
     }
   }
   if (boxed.comm.rank() == 0)
-    std::printf("active box %ld of %ld owned cells on rank 0; largest difference %.2e of a field's maximum\n",
-                box.size(), slab.size(), worst);
+    std::printf("%s: active box %ld of %ld owned cells on rank 0; largest difference %.2e of a field's maximum\n",
+                GetParam() == 0 ? "pipe" : "channel", box.size(), slab.size(), worst);
 }
+
+INSTANTIATE_TEST_SUITE_P(PipeAndChannel, ActiveBox, ::testing::Values(0, 1));
