@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "app/memory_estimate.hpp"
 #include "app/simulation.hpp"
 #include "config/case_config.hpp"
 #include "core/compat.hpp"
@@ -80,8 +81,9 @@ int run_cli(int argc, char** argv, const eulerfsi::Comm& comm) {
     const eulerfsi::CaseConfig cfg = eulerfsi::parse_case_file(case_file, sets);
     eulerfsi::check_build_supports(cfg);
     if (app.got_subcommand("check")) {
-      (void)eulerfsi::make_grid(cfg, comm);  // the rank split is part of being valid
-      if (comm.root()) std::printf("%s", eulerfsi::to_toml(cfg).c_str());
+      const eulerfsi::Grid grid = eulerfsi::make_grid(cfg, comm);  // the rank split is part of being valid
+      const std::string memory = eulerfsi::describe_memory(cfg, grid, comm);
+      if (comm.root()) std::printf("%s%s", memory.c_str(), eulerfsi::to_toml(cfg).c_str());
       return 0;
     }
     eulerfsi::RunOptions opt;
@@ -93,6 +95,8 @@ int run_cli(int argc, char** argv, const eulerfsi::Comm& comm) {
                                   "has no checkpoints to continue from");
 #endif
     opt.quiet = quiet;
+    // before anything is allocated or written
+    eulerfsi::refuse_if_out_of_memory(cfg, eulerfsi::make_grid(cfg, comm), comm);
     return eulerfsi::run_case(cfg, comm, opt);
   } catch (const eulerfsi::ConfigError& e) {
     if (comm.root()) std::fprintf(stderr, "error: %s\n", e.what());

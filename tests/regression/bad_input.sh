@@ -44,6 +44,16 @@ expect_error "unknown --set key" "flow.Reynolds" "$bin" check "$good" --set flow
 expect_error "bad --set syntax" "flow.Re" "$bin" check "$good" --set flow.Re
 expect_error "rank split" "cannot be split into 2" mpi2 check "$good" --set "domain.cells=[15,16,16]"
 expect_error "slab too thin" "at least 3" mpi2 check "$good" --set "domain.cells=[4,16,16]"
+# a grid that cannot fit in this node's memory: `check` prints what it needs, `run` refuses it
+# before allocating anything or creating its output directory
+huge='domain.cells=[100000,50000,50000]'
+if "$bin" check "$good" --set "$huge" | grep -q '^# memory: about .* per rank'; then
+  echo "ok   check prints the memory per rank"
+else
+  echo "FAIL check does not print the memory per rank"; fail=1
+fi
+expect_error "too large for memory" "domain.cells" "$bin" run "$good" --set "$huge" --out "$work/huge"
+[ ! -e "$work/huge" ] || { echo "FAIL: the refused run created $work/huge"; fail=1; }
 touch "$work/a_file"
 expect_error "output dir is a file" "$work/a_file" "$bin" run "$good" --out "$work/a_file/run"
 mkdir -p "$work/readonly" && chmod 555 "$work/readonly"

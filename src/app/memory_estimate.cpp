@@ -1,0 +1,102 @@
+#include "app/memory_estimate.hpp"
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "core/types.hpp"
+
+namespace eulerfsi {
+
+namespace {
+
+// Whole-slab fields (each one double per cell, ghosts included) held by each part of a run:
+// u, v, w, p, p_step, two rhs triples and mu (src/solver/flow_state.hpp, flow_solver.hpp).
+constexpr double kFlowFields = 12.0;
+// The Poisson solver's work arrays: FFTW-MPI's in-place buffer and the transposes' scratch; the
+// one-rank DCT solver's real and half-complex arrays and its line buffers.
+constexpr double kPoissonFieldsFftwMpi = 2.0;
+constexpr double kPoissonFieldsFftDct = 4.0;
+// Field snapshots: total psi and the three centred velocity components.
+constexpr double kSnapshotFields = 4.0;
+// Every body: psi, B and B before the update (6 + 6) (src/solid/solid_body.hpp).
+constexpr double kBodyFields = 13.0;
+// The model's own: RK3 rhs and memory of psi and B (paper), or of q = xi - x and its level (map).
+constexpr double kPaperModelFields = 14.0;
+constexpr double kReferenceMapFields = 10.0;
+// Allocator and library overhead (FFTW plans, MPI buffers, the Kokkos runtime) on top.
+constexpr double kOverheadBytes = 64.0 * 1024 * 1024;
+
+// MemAvailable of this node in bytes (0: unknown).
+double available_bytes() {
+  std::ifstream in("/proc/meminfo");
+  std::string key;
+  double kib = 0.0;
+  std::string unit;
+  while (in >> key >> kib >> unit)
+    if (key == "MemAvailable:") return kib * 1024.0;
+  return 0.0;
+}
+
+// Ranks of this run on this node.
+int ranks_on_node(const Comm& comm) {
+#ifdef EULERFSI_HAVE_MPI
+  MPI_Comm node;
+  MPI_Comm_split_type(comm.comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+  int n = 1;
+  MPI_Comm_size(node, &n);
+  MPI_Comm_free(&node);
+  return n;
+#else
+  (void)comm;
+  return 1;
+#endif
+}
+
+std::string gib(double bytes) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g GiB", bytes / (1024.0 * 1024.0 * 1024.0));
+  return buf;
+}
+
+}  // namespace
+
+MemoryEstimate estimate_memory(const CaseConfig& cfg, const Grid& grid) {
+  MemoryEstimate m;
+  m.slab_cells = double(grid.ext(0)) * double(grid.ext(1)) * double(grid.ext(2));
+#ifdef EULERFSI_POISSON_DEFAULT_FFT_DCT
+  const bool fft_dct = true;
+#else
+  const bool fft_dct = false;
+#endif
+  m.flow_fields = kFlowFields + (fft_dct ? kPoissonFieldsFftDct : kPoissonFieldsFftwMpi) +
+                  (cfg.output.fields_every > 0 ? kSnapshotFields : 0.0);
+  for (const auto& s : cfg.solids)
+    m.solid_fields += kBodyFields + (s.model == SolidModelKind::Paper ? kPaperModelFields : kReferenceMapFields);
+  return m;
+}
+
+std::string describe_memory(const CaseConfig& cfg, const Grid& grid, const Comm& comm) {
+  const MemoryEstimate m = estimate_memory(cfg, grid);
+  std::ostringstream out;
+  out << "# memory: about " << gib(m.bytes() + kOverheadBytes) << " per rank (" << m.flow_fields << " flow and "
+      << m.solid_fields << " solid fields of " << m.slab_cells << " cells, 8 bytes each)";
+  const double avail = available_bytes();
+  if (avail > 0.0) out << "; this node has " << gib(avail) << " available for " << ranks_on_node(comm) << " rank(s)";
+  out << "\n";
+  return out.str();
+}
+
+void refuse_if_out_of_memory(const CaseConfig& cfg, const Grid& grid, const Comm& comm) {
+  if (!Kokkos::SpaceAccessibility<Kokkos::HostSpace, MemSpace>::accessible) return;  // device memory: not checked
+  const double avail = available_bytes();
+  const int ranks = ranks_on_node(comm);
+  const double need = (estimate_memory(cfg, grid).bytes() + kOverheadBytes) * ranks;
+  if (!comm.any(avail > 0.0 && need > avail)) return;
+  throw ConfigError(cfg.source + ": domain.cells = [" + std::to_string(cfg.domain.cells[0]) + ", " +
+                    std::to_string(cfg.domain.cells[1]) + ", " + std::to_string(cfg.domain.cells[2]) + "] needs about " +
+                    gib(need) + " on this node (" + std::to_string(ranks) + " rank(s)), which has " + gib(avail) +
+                    " available: use fewer cells, or more nodes");
+}
+
+}  // namespace eulerfsi
