@@ -9,6 +9,7 @@ namespace eulerfsi::kernels {
 
 using Mask2 = Kokkos::View<double**, Kokkos::LayoutRight, MemSpace>;
 using Offset2 = Kokkos::View<int**[2], Kokkos::LayoutRight, MemSpace>;
+using WallLayer = Kokkos::View<int* [2], Kokkos::LayoutRight, MemSpace>;
 
 inline void rk3_update(const Field3& u, const Field3& rhs_new, const Field3& rhs_old, const Mask2& chi, double dt,
                        double gamma, double zeta, double penal_factor, const Box& box, const char* label,
@@ -32,16 +33,17 @@ inline void rk3_update(const Field3& u, const Field3& rhs_new, const Field3& rhs
 // forcing) the target is the linear interpolation between the wall, at distance t along a grid
 // line, and the fluid point (j, k) + off one cell further in:
 //   u <- (u + pen u_t) / (1 + pen),  u_t = w u(i, j + off_y, k + off_z) + (1 - w) u_wall,  w = t / (t + h)
-// Outside the pipe w = 0 (u_t = u_wall). Run after rk3_update without a mask. The neighbour read
-// is never penalized itself (chi = 0 there), so updating in place has no race.
-inline void penalize_interpolated_wall(const Field3& u, const Mask2& chi, const Mask2& w, const Offset2& off,
-                                       double penal_factor, const Box& box, const char* label, double u_wall = 0.0) {
-  for_each_cell(label, box, KOKKOS_LAMBDA(int i, int j, int k) {
-    const double c = chi(j, k);
-    if (c == 0.0) return;
-    const double pen = penal_factor * c;
+// Outside the pipe (u_t = u_wall) rk3_update does it with the mask chi_wall; this runs after it on
+// the layer's points only (a list of (j, k), every x). The neighbour read is never penalized
+// itself, so updating in place has no race.
+inline void penalize_wall_layer(const Field3& u, const WallLayer& layer, const Mask2& w, const Offset2& off,
+                                double penal_factor, const Box& box, const char* label, double u_wall = 0.0) {
+  const int points = int(layer.extent(0));
+  if (points == 0) return;
+  Kokkos::parallel_for(label, Policy2({box.lo[0], 0}, {box.hi[0], points}), KOKKOS_LAMBDA(int i, int n) {
+    const int j = layer(n, 0), k = layer(n, 1);
     const double target = w(j, k) * u(i, j + off(j, k, 0), k + off(j, k, 1)) + (1.0 - w(j, k)) * u_wall;
-    u(i, j, k) = (u(i, j, k) + pen * target) / (1.0 + pen);
+    u(i, j, k) = (u(i, j, k) + penal_factor * target) / (1.0 + penal_factor);
   });
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <utility>
+#include <vector>
 
 #include "kernels/flow_reductions.hpp"
 #include "kernels/momentum.hpp"
@@ -98,6 +99,26 @@ void FlowSolver::build_wall_masks() {
     masks_.chi[c] = chi;
     masks_.weight[c] = weight;
     masks_.neighbour[c] = nb;
+    // the same split for the update: the layer (w > 0) as a list, the rest a mask towards u_wall
+    kernels::Mask2 chi_wall("chi_wall", e1, e2);
+    auto chi_wall_h = Kokkos::create_mirror_view(chi_wall);
+    std::vector<std::pair<int, int>> layer;
+    for (int j = 0; j < e1; ++j)
+      for (int k = 0; k < e2; ++k) {
+        const bool on_layer = chi_h(j, k) > 0.0 && w_h(j, k) > 0.0;
+        chi_wall_h(j, k) = on_layer ? 0.0 : chi_h(j, k);
+        if (on_layer) layer.emplace_back(j, k);
+      }
+    kernels::WallLayer points("wall_layer", layer.size());
+    auto points_h = Kokkos::create_mirror_view(points);
+    for (size_t n = 0; n < layer.size(); ++n) {
+      points_h(n, 0) = layer[n].first;
+      points_h(n, 1) = layer[n].second;
+    }
+    Kokkos::deep_copy(chi_wall, chi_wall_h);
+    Kokkos::deep_copy(points, points_h);
+    masks_.chi_wall[c] = chi_wall;
+    masks_.layer[c] = points;
     if (c != 0) continue;
     // x-faces inside the pipe carry the flow rate. The correction du moves the open faces by du and
     // the forced layer by w du, which keeps u_f = w u_nb + (1 - w) u_wall exact after it
@@ -181,15 +202,15 @@ void FlowSolver::advance(double t, double dt, SolidCoupling* solids) {
     for (int c = 0; c < 3; ++c) {
       // the wall is at rest in the laboratory: u_wall = -frame_u in the grid's frame
       const double u_wall = c == 0 ? -frame_u_ : 0.0;
-      kernels::rk3_update(vel.c[c], rhs_new_.c[c], rhs_old_.c[c], interpolated ? kernels::Mask2() : masks_.chi[c], dt,
-                          gamma, zeta, penal, box, labels[c], u_wall);
+      kernels::rk3_update(vel.c[c], rhs_new_.c[c], rhs_old_.c[c], interpolated ? masks_.chi_wall[c] : masks_.chi[c],
+                          dt, gamma, zeta, penal, box, labels[c], u_wall);
       std::swap(rhs_new_.c[c], rhs_old_.c[c]);
     }
     // the interpolated wall reads the predicted velocity of its inner neighbours: a second pass
     if (interpolated)
       for (int c = 0; c < 3; ++c)
-        kernels::penalize_interpolated_wall(vel.c[c], masks_.chi[c], masks_.weight[c], masks_.neighbour[c], penal, box,
-                                            wall_labels[c], c == 0 ? -frame_u_ : 0.0);
+        kernels::penalize_wall_layer(vel.c[c], masks_.layer[c], masks_.weight[c], masks_.neighbour[c], penal, box,
+                                     wall_labels[c], c == 0 ? -frame_u_ : 0.0);
     bc_.fill_velocity(vel, t_next);
     // (iv) projection
     project(alpha_dt);

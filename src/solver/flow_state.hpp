@@ -26,6 +26,8 @@ struct WallMasks {
   kernels::Mask2 chi[3];          // 1 where the component is penalized
   kernels::Mask2 weight[3];       // interpolated wall: the target's weight on the inner neighbour
   kernels::Offset2 neighbour[3];  // interpolated wall: (dj, dk) of that neighbour
+  kernels::Mask2 chi_wall[3];     // interpolated wall: 1 where the target is u_wall itself (outside the pipe)
+  kernels::WallLayer layer[3];    // interpolated wall: the (j, k) of the forced first fluid layer
   kernels::Mask2 outside_u;       // 1 at the x-faces outside the pipe (r >= R): no flow rate there
   kernels::Mask2 open_u;          // share of the flow-rate correction each x-face takes (1 - chi + chi weight)
 };
