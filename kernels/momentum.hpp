@@ -48,16 +48,11 @@ struct MomentumRhs {
   double mu_uniform;
   double inv_h[3];
 
-  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k) const {
-    const long st[3] = {long(rhs.stride(0)), long(rhs.stride(1)), 1};
-    const long c = i * st[0] + j * st[1] + k;
-    const double* KOKKOS_RESTRICT uD = (D == 0 ? u0 : (D == 1 ? u1 : u2)).data();
-    const double* KOKKOS_RESTRICT uE1 = (E1 == 0 ? u0 : (E1 == 1 ? u1 : u2)).data();
-    const double* KOKKOS_RESTRICT uE2 = (E2 == 0 ? u0 : (E2 == 1 ? u1 : u2)).data();
-    const double* KOKKOS_RESTRICT m = Uniform ? nullptr : mu.data();
-    const double mu0 = mu_uniform;
-    const long sD = st[D], s1 = st[E1], s2 = st[E2];
-    const double ihD = inv_h[D], ih1 = inv_h[E1], ih2 = inv_h[E2];
+  // rhs_D at the flat index c (every field shares one layout: strides sD, s1, s2).
+  KOKKOS_FORCEINLINE_FUNCTION static double value(const double* KOKKOS_RESTRICT uD, const double* KOKKOS_RESTRICT uE1,
+                                                  const double* KOKKOS_RESTRICT uE2, const double* KOKKOS_RESTRICT m,
+                                                  double mu0, long c, long sD, long s1, long s2, double ihD,
+                                                  double ih1, double ih2) {
     const double fn =
         (normal_flux_at<Uniform>(uD, m, mu0, c + sD, sD, ihD) - normal_flux_at<Uniform>(uD, m, mu0, c, sD, ihD)) * ihD;
     const double f1 = (shear_flux_at<D, E1, Uniform>(uD, uE1, m, mu0, c, sD, s1, ihD, ih1) -
@@ -66,7 +61,31 @@ struct MomentumRhs {
     const double f2 = (shear_flux_at<D, E2, Uniform>(uD, uE2, m, mu0, c, sD, s2, ihD, ih2) -
                        shear_flux_at<D, E2, Uniform>(uD, uE2, m, mu0, c - s2, sD, s2, ihD, ih2)) *
                       ih2;
-    rhs.data()[c] = -(fn + f1 + f2);
+    return -(fn + f1 + f2);
+  }
+
+  KOKKOS_INLINE_FUNCTION const double* field(int a) const { return (a == 0 ? u0 : (a == 1 ? u1 : u2)).data(); }
+
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k) const {
+    const long st[3] = {long(rhs.stride(0)), long(rhs.stride(1)), 1};
+    const long c = i * st[0] + j * st[1] + k;
+    rhs.data()[c] = value(field(D), field(E1), field(E2), Uniform ? nullptr : mu.data(), mu_uniform, c, st[D], st[E1],
+                          st[E2], inv_h[D], inv_h[E1], inv_h[E2]);
+  }
+
+  // One row along k (CPU): the pointers are set up once and the loop vectorises.
+  void row(int i, int j, int k0, int k1) const {
+    const long st[3] = {long(rhs.stride(0)), long(rhs.stride(1)), 1};
+    const long base = i * st[0] + j * st[1];
+    const double* KOKKOS_RESTRICT uD = field(D) + base;
+    const double* KOKKOS_RESTRICT uE1 = field(E1) + base;
+    const double* KOKKOS_RESTRICT uE2 = field(E2) + base;
+    const double* KOKKOS_RESTRICT m = Uniform ? nullptr : mu.data() + base;
+    double* KOKKOS_RESTRICT out = rhs.data() + base;
+    const long sD = st[D], s1 = st[E1], s2 = st[E2];
+    const double mu0 = mu_uniform, ihD = inv_h[D], ih1 = inv_h[E1], ih2 = inv_h[E2];
+    EULERFSI_INDEPENDENT_LOOP
+    for (int k = k0; k < k1; ++k) out[k] = value(uD, uE1, uE2, m, mu0, k, sD, s1, s2, ihD, ih1, ih2);
   }
 };
 
@@ -82,6 +101,11 @@ struct MomentumRhsAll {
     fy(i, j, k);
     fz(i, j, k);
   }
+  void row(int i, int j, int k0, int k1) const {
+    fx.row(i, j, k0, k1);
+    fy.row(i, j, k0, k1);
+    fz.row(i, j, k0, k1);
+  }
 };
 
 template <bool Uniform>
@@ -91,7 +115,7 @@ inline void momentum_rhs_impl(const Velocity& rhs, const Velocity& u, const Fiel
   MomentumRhsAll<Uniform> f{{rhs.c[0], u.c[0], u.c[1], u.c[2], mu, mu_uniform, {inv_h[0], inv_h[1], inv_h[2]}},
                             {rhs.c[1], u.c[0], u.c[1], u.c[2], mu, mu_uniform, {inv_h[0], inv_h[1], inv_h[2]}},
                             {rhs.c[2], u.c[0], u.c[1], u.c[2], mu, mu_uniform, {inv_h[0], inv_h[1], inv_h[2]}}};
-  for_each_cell(label, box, f);
+  for_each_row(label, box, f);
 }
 
 // Fills rhs[D] over `box` for all three components with the constant viscosity mu.

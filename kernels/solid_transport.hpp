@@ -120,20 +120,27 @@ inline void tensor_transport_rhs(const Tensor6& rhs, const Tensor6& b, const Vel
 }
 
 // Low-storage RK3 substep: q += dt (gamma rhs + zeta rhs_old). The caller swaps rhs and rhs_old.
-inline void rk3_scalar_update(const Field3& q, const Field3& rhs, const Field3& rhs_old, double dt, double gamma,
-                              double zeta, const Box& box) {
-  const double a = dt * gamma, c = dt * zeta;
-  for_each_cell("eulerfsi::solid::psi_update", box, KOKKOS_LAMBDA(int i, int j, int k) {
-    q(i, j, k) += a * rhs(i, j, k) + c * rhs_old(i, j, k);
+// q = q0 + dt (gamma rhs + zeta rhs_old) on one field (q may be q0); flat indices on the shared
+// layout, so the k loop vectorises.
+inline void rk3_field_update(const Field3& q, const Field3& q0, const Field3& rhs, const Field3& rhs_old, double a,
+                             double c, const Box& box, const char* label) {
+  for_each_cell(label, box, KOKKOS_LAMBDA(int i, int j, int k) {
+    const long n = i * long(q.stride(0)) + j * long(q.stride(1)) + k;
+    q.data()[n] = q0.data()[n] + a * rhs.data()[n] + c * rhs_old.data()[n];
   });
 }
 
-inline void rk3_tensor_update(const Tensor6& b, const Tensor6& rhs, const Tensor6& rhs_old, double dt, double gamma,
+inline void rk3_scalar_update(const Field3& q, const Field3& rhs, const Field3& rhs_old, double dt, double gamma,
                               double zeta, const Box& box) {
-  const double a = dt * gamma, c = dt * zeta;
-  for_each_cell("eulerfsi::solid::b_update", box, KOKKOS_LAMBDA(int i, int j, int k) {
-    for (int s = 0; s < kTensorComponents; ++s) b.c[s](i, j, k) += a * rhs.c[s](i, j, k) + c * rhs_old.c[s](i, j, k);
-  });
+  rk3_field_update(q, q, rhs, rhs_old, dt * gamma, dt * zeta, box, "eulerfsi::solid::psi_update");
+}
+
+// B = B0 + dt (gamma rhs + zeta rhs_old), component by component (B0: the tensor before the
+// substep, kept by the caller as B_prev).
+inline void rk3_tensor_update(const Tensor6& b, const Tensor6& b0, const Tensor6& rhs, const Tensor6& rhs_old, double dt,
+                              double gamma, double zeta, const Box& box) {
+  for (int s = 0; s < kTensorComponents; ++s)
+    rk3_field_update(b.c[s], b0.c[s], rhs.c[s], rhs_old.c[s], dt * gamma, dt * zeta, box, "eulerfsi::solid::b_update");
 }
 
 // psi = min(max(psi, 0), 1): WENO5 is essentially non-oscillatory, not bounded, so a sharp

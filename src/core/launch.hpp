@@ -38,6 +38,18 @@ void for_each_cell(const char* label, const Box& b, const F& f) {
   }
 }
 
+// The same for a body with a row method, f.row(i, j, k0, k1), that runs the k loop itself (set up
+// once per row, so it vectorises); GPUs call f(i, j, k) per cell.
+template <class F>
+void for_each_row(const char* label, const Box& b, const F& f) {
+  if constexpr (kHostKernels) {
+    const int k0 = b.lo[2], k1 = b.hi[2];
+    Kokkos::parallel_for(label, plane_policy(b), KOKKOS_LAMBDA(int i, int j) { f.row(i, j, k0, k1); });
+  } else {
+    Kokkos::parallel_for(label, b.policy(), f);
+  }
+}
+
 // f(i, j, k, acc) for every cell, combined by a built-in reducer (Sum, Max, Min).
 template <class F, class Reducer>
 void reduce_cells(const char* label, const Box& b, const F& f, const Reducer& reducer) {

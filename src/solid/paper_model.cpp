@@ -91,9 +91,10 @@ void PaperModel::advance_substep(SolidBody& body, const kernels::Velocity& vel, 
   // d psi/dt = -div(u psi);  dB/dt = -div(u B) + L B + B L^T   (WENO5 fluxes, RK3)
   kernels::scalar_advection_rhs(psi_rhs_, body.psi, vel, grid_.h, box);
   kernels::tensor_transport_rhs(b_rhs_, body.b, vel, body.psi, kPsiReset, grid_.h, box);
-  for (int c = 0; c < kernels::kTensorComponents; ++c) Kokkos::deep_copy(body.b_prev.c[c], body.b.c[c]);
+  // B before the substep becomes B_prev by a swap (no copy); B is written anew from it
+  std::swap(body.b, body.b_prev);
   kernels::rk3_scalar_update(body.psi, psi_rhs_, psi_rhs_old_, dt, gamma, zeta, box);
-  kernels::rk3_tensor_update(body.b, b_rhs_, b_rhs_old_, dt, gamma, zeta, box);
+  kernels::rk3_tensor_update(body.b, body.b_prev, b_rhs_, b_rhs_old_, dt, gamma, zeta, box);
   std::swap(psi_rhs_, psi_rhs_old_);
   std::swap(b_rhs_, b_rhs_old_);
   clip_conserving(body.psi);

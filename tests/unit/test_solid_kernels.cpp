@@ -232,7 +232,7 @@ TEST(SolidTransport, IdentityStaysIdentityUnderTranslation) {
     for (int s = 0; s < 3; ++s) {
       for (int c = 0; c < 6; ++c) test_support::fill_periodic(b.c[c], m.n);
       kernels::tensor_transport_rhs(rhs, b, vel, m.field("psi_solid"), -1.0, m.h, m.interior());  // psi_min < 0: every cell
-      kernels::rk3_tensor_update(b, rhs, rhs_old, dt, kGamma[s], kZeta[s], m.interior());
+      kernels::rk3_tensor_update(b, b, rhs, rhs_old, dt, kGamma[s], kZeta[s], m.interior());
       std::swap(rhs, rhs_old);
     }
   double err = 0.0;
@@ -307,7 +307,7 @@ TEST(SolidTransport, SimpleShearMatchesExactDeformation) {
       // B is uniform, so a periodic copy is also exact in the sheared y direction
       for (int c = 0; c < 6; ++c) test_support::fill_periodic(b.c[c], m.n);
       kernels::tensor_transport_rhs(rhs, b, vel, m.field("psi_solid"), -1.0, m.h, m.interior());  // psi_min < 0: every cell
-      kernels::rk3_tensor_update(b, rhs, rhs_old, dt, kGamma[s], kZeta[s], m.interior());
+      kernels::rk3_tensor_update(b, b, rhs, rhs_old, dt, kGamma[s], kZeta[s], m.interior());
       std::swap(rhs, rhs_old);
     }
   const double gt = g * dt * steps;
