@@ -280,6 +280,29 @@ inline void solid_from_map(const Field3& psi, const Tensor6& b, const Vector3& q
   });
 }
 
+// Distance from (y, z) to the nearest no-slip wall: the pipe's circle r = R = 1/2, the planes
+// y = +-Ly/2 (channel, Couette; duct also z = +-Lz/2); none in a periodic box.
+struct WallDistance {
+  bool pipe = false, y_walls = false, z_walls = false;
+  double half_y = 0.5, half_z = 0.5;
+  KOKKOS_INLINE_FUNCTION double operator()(double y, double z) const {
+    double d = 1e300;
+    if (pipe) d = 0.5 - compat::sqrt(y * y + z * z);
+    if (y_walls) d = compat::fmin(d, half_y - compat::fabs(y));
+    if (z_walls) d = compat::fmin(d, half_z - compat::fabs(z));
+    return d;
+  }
+};
+
+// The smallest wall distance of a solid cell centre (level 1) in the box (1e300 if none).
+inline double solid_wall_distance(const Field3& level, const CellCentres& xc, const WallDistance& wall, const Box& box) {
+  double d = 1e300;
+  reduce_cells("eulerfsi::refmap::wall_gap", box, KOKKOS_LAMBDA(int i, int j, int k, double& m) {
+    if (level(i, j, k) == kLevelSolid) m = compat::fmin(m, wall(xc(1, j), xc(2, k)));
+  }, Kokkos::Min<double>(d));
+  return d;
+}
+
 // sum psi and sum |grad psi| (central differences) over the box, times the cell volume: the
 // body's volume and surface area (dV/dshift of the level shift, for the volume correction).
 inline void volume_and_area(const Field3& psi, const double h[3], const Box& box, double& volume, double& area) {

@@ -44,11 +44,13 @@ class ReferenceMapModel final : public SolidModel {
   void derive_solid(SolidBody& body, const Box& region);
   void update_active_box();
   void correct_volume(SolidBody& body, const Box& region);
+  void check_wall_gap(const Box& region) const;
 
   Grid grid_;
   const BoundaryConditions* bc_;
   Comm comm_;
   kernels::ReferenceShape shape_;
+  kernels::WallDistance wall_;
   kernels::CellCentres centres_;
   kernels::Vector3 q_, rhs_, rhs_old_;
   Field3 level_;

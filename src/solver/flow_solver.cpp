@@ -189,8 +189,8 @@ void FlowSolver::advance(double t, double dt, SolidCoupling* solids) {
     }
     // (ii) explicit momentum right-hand side: advection + viscous (+ elastic stress); the
     // mixture viscosity only where it differs from mu_f (a face's stencil reads mu one cell away)
-    kernels::momentum_rhs(rhs_new_, vel, mu_fluid_, grid_.h, box);
     const Box mixture = solids ? solids->viscosity_region().grown(1, box) : Box{{0, 0, 0}, {0, 0, 0}};
+    if (mixture.size() < box.size()) kernels::momentum_rhs(rhs_new_, vel, mu_fluid_, grid_.h, box);
     if (!mixture.empty()) kernels::momentum_rhs(rhs_new_, vel, mu_, grid_.h, mixture);
     if (solids) solids->add_elastic_force(rhs_new_);
     // (iii) predictor with implicit penalization of the pipe wall

@@ -7,17 +7,16 @@
 //  - pipe: one sphere straddling the periodic x boundary (it wraps: its box is the whole x range
 //    on one rank, and sits across the rank boundary on two) and one straddling x = Lx/2 (the
 //    boundary between the two ranks' slabs);
-//  - channel (walls in y, periodic z): one sphere with its edge 2.5 cells from the lower wall (the
+//  - channel (walls in y, periodic z): one sphere with its edge 4.5 cells from the lower wall (the
 //    wall extrapolation of the map runs on its x-planes only) and one straddling the periodic z
 //    boundary (so do the ghost fills along z).
-// (A sphere both at a wall and across the periodic z boundary is a known defect of the reference
-// map, docs/STATUS.md: it diverges with or without the box.)
 //
-// Tolerance: both runs do the same arithmetic on every cell where a body is, except the order of
-// the reductions (volume and area sums over a box instead of the slab) and the mixture viscosity's
-// edge average 0.25 (4 mu_f) against mu_f; those differences are of order 1e-16 and the 40 steps
-// amplify them by far less than 1e4 (the flow is laminar and the level shift a contraction), so
-// 1e-12 of each field's largest value is round-off and anything else a defect.
+// Tolerance: on one thread of one rank the two runs are bit for bit the same (measured: 0). The
+// only other difference is the order of the threaded sums (volume and area of the level shift,
+// over a box instead of the slab): 1e-16 relative per sum, fed into the level shift every
+// substep for 120 substeps and differentiated on a grid of h = 1/24 (psi, B); measured 1.4e-12 of
+// a field's maximum on 2 threads. 1e-10 bounds that with a wide margin; every wrong margin or
+// skipped ghost fill tried (x-edge fill, z periodic fill, wall extrapolation) gave O(1).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -49,8 +48,9 @@ CaseConfig two_spheres() {
 CaseConfig spheres_at_wall_and_z_boundary() {
   CaseConfig cfg = test::small_case(Geometry::Channel, 32, 24, 24, 4.0 / 3.0, 1.0, 1.0, 100.0, InitialFlow::Laminar);
   const double h = 1.0 / 24.0;
-  // edge 2.5 cells from the lower wall; across the periodic z boundary, far from the walls
-  for (const auto& c : {std::array<double, 3>{0.4, -0.5 + 0.125 + 2.5 * h, 0.0}, std::array<double, 3>{1.0, 0.15, 0.49}}) {
+  // edge 4.5 cells from the lower wall (the reference map needs 4); across the periodic z
+  // boundary, far from the walls
+  for (const auto& c : {std::array<double, 3>{0.4, -0.5 + 0.125 + 4.5 * h, 0.0}, std::array<double, 3>{1.0, 0.15, 0.49}}) {
     SolidConfig s;
     s.diameter = 0.25;
     s.center = c;
@@ -106,27 +106,30 @@ TEST_P(ActiveBox, SameFieldsAsTheWholeSlab) {
   const Box box = boxed.solids.active_box(), slab = boxed.grid.interior();
   for (const auto& body : boxed.solids.bodies()) EXPECT_LT(body.model->active_box().size(), slab.size());
 
+  // both runs stayed bounded (comparing two blown-up runs would prove nothing)
+  EXPECT_LT(test::max_abs_velocity(boxed), 3.0);
+  EXPECT_LT(test::max_abs_velocity(whole), 3.0);
   double diff, scale, worst = 0.0;
   auto note = [&](double d, double s) { worst = std::max(worst, d / s); };
   for (int c = 0; c < 3; ++c) {
     compare(boxed, boxed.flow.state().vel.c[c], whole.flow.state().vel.c[c], diff, scale);
     note(diff, scale);
-    EXPECT_LE(diff, 1e-12 * scale) << "velocity component " << c;
+    EXPECT_LE(diff, 1e-10 * scale) << "velocity component " << c;
   }
   compare(boxed, boxed.flow.state().p, whole.flow.state().p, diff, scale);
   note(diff, scale);
-  EXPECT_LE(diff, 1e-12 * scale) << "pressure";
+  EXPECT_LE(diff, 1e-10 * scale) << "pressure";
   for (size_t n = 0; n < cfg.solids.size(); ++n) {
     const auto& bb = boxed.solids.bodies()[n];
     const auto& bw = whole.solids.bodies()[n];
     compare(boxed, bb.psi, bw.psi, diff, scale);
     EXPECT_GT(scale, 0.99) << "body " << n << " has left the pipe";
     note(diff, scale);
-    EXPECT_LE(diff, 1e-12 * scale) << "psi of body " << n;
+    EXPECT_LE(diff, 1e-10 * scale) << "psi of body " << n;
     for (int c = 0; c < kernels::kTensorComponents; ++c) {
       compare(boxed, bb.b.c[c], bw.b.c[c], diff, scale);
       note(diff, scale);
-      EXPECT_LE(diff, 1e-12 * scale) << "B component " << c << " of body " << n;
+      EXPECT_LE(diff, 1e-10 * scale) << "B component " << c << " of body " << n;
     }
   }
   if (boxed.comm.rank() == 0)
