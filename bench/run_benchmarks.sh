@@ -10,8 +10,10 @@ build=${1:-$root/build}
 shift || true
 threads=${THREADS:-"1 2"}
 reps=${REPS:-3}
-out=$(mktemp -d)
-trap 'rm -rf "$out"' EXIT
+# the raw Google Benchmark JSON stays in bench/data/ (bench/support/plot_step.py reads it)
+out=$here/data
+mkdir -p "$out"
+rm -f "$out"/*.json
 
 source "$root/ci/env.sh"  # KOKKOS_ROOT (for the table header), MPI settings
 export OMP_PROC_BIND=false
@@ -33,9 +35,10 @@ for t in $threads; do
 done
 load_after=$(cut -d' ' -f1-3 /proc/loadavg)
 
-python3 "$here/support/make_results.py" "$out" "$here/RESULTS.md" \
+/usr/bin/python3 "$here/support/make_results.py" "$out" "$here/RESULTS.md" \
   --model "$(lscpu | sed -n 's/^Model name: *//p' | head -1)" --cores "$(nproc)" \
   --commit "$(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)" \
   --load "$load_before -> $load_after" --reps "$reps" \
   --toolchain "$(c++ --version | head -1), $(sed -n 's/^CMAKE_CXX_FLAGS_RELEASE:STRING=//p' "$build/CMakeCache.txt") $(sed -n 's/^CMAKE_CXX_FLAGS:STRING=//p' "$build/CMakeCache.txt"), Kokkos $(basename "$KOKKOS_ROOT")"
-echo "wrote $here/RESULTS.md" >&2
+/usr/bin/python3 "$here/support/plot_step.py" "$out" "$here/step_cost.png"
+echo "wrote $here/RESULTS.md and $here/step_cost.png" >&2

@@ -204,20 +204,28 @@ struct ExtrapolationSweep {
       for (int b = -1; b <= 1 && !touches; ++b)
         for (int c = -1; c <= 1 && !touches; ++c) touches = known(i + a, j + b, k + c);
     if (!touches) return;
-    double M[4][4] = {}, rhs[4][3] = {}, mean[3] = {0, 0, 0}, wsum = 0.0;
+    // weights 1/|r|^2 by |r|^2 = 1..12 (the centre, r = 0, is the unknown cell itself)
+    const double inv_r2[13] = {0.0,       1.0,       1.0 / 2,  1.0 / 3,  1.0 / 4,  1.0 / 5, 1.0 / 6,
+                               1.0 / 7,   1.0 / 8,   1.0 / 9,  1.0 / 10, 1.0 / 11, 1.0 / 12};
+    // normal equations; M is symmetric: the upper triangle is summed, the lower copied after
+    double M[4][4] = {}, rhs[4][3] = {};
     for (int a = -2; a <= 2; ++a)
       for (int b = -2; b <= 2; ++b)
         for (int c = -2; c <= 2; ++c) {
           if (!known(i + a, j + b, k + c)) continue;
-          const double w = 1.0 / double(a * a + b * b + c * c);
+          const double w = inv_r2[a * a + b * b + c * c];
           const double basis[4] = {1.0, double(a), double(b), double(c)};
+          const double qv[3] = {q.c[0](i + a, j + b, k + c), q.c[1](i + a, j + b, k + c), q.c[2](i + a, j + b, k + c)};
           for (int r = 0; r < 4; ++r) {
-            for (int col = 0; col < 4; ++col) M[r][col] += w * basis[r] * basis[col];
-            for (int d = 0; d < 3; ++d) rhs[r][d] += w * basis[r] * q.c[d](i + a, j + b, k + c);
+            const double wb = w * basis[r];
+            for (int col = r; col < 4; ++col) M[r][col] += wb * basis[col];
+            for (int d = 0; d < 3; ++d) rhs[r][d] += wb * qv[d];
           }
-          for (int d = 0; d < 3; ++d) mean[d] += w * q.c[d](i + a, j + b, k + c);
-          wsum += w;
         }
+    for (int r = 1; r < 4; ++r)
+      for (int col = 0; col < r; ++col) M[r][col] = M[col][r];
+    // the fallback, the weighted mean, is row 0 (solve4 overwrites it)
+    const double wsum = M[0][0], mean[3] = {rhs[0][0], rhs[0][1], rhs[0][2]};
     double value[3];
     if (!solve4(M, rhs, value))
       for (int d = 0; d < 3; ++d) value[d] = mean[d] / wsum;

@@ -76,7 +76,8 @@ def main():
             grid, a = grid_of(name)
             fn = re.match(r"BM_(\w+)", name).group(1)
             if kind == "step":
-                label = f"**whole RK3 step {grid}{' + sphere' if a.get('particle') == '1' else ''}**"
+                sphere = {"0": "", "1": " + sphere (paper model)", "2": " + sphere (reference map)"}[a.get("particle", "0")]
+                label = f"**whole RK3 step {grid}{sphere}**"
                 rows.append((1, grid, name, threads, label, r["ns_per_cell_step"], 1, r["ns_per_cell_step"], None))
             else:
                 calls = CALLS_PER_STEP.get(fn, 1)
