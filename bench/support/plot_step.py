@@ -63,7 +63,7 @@ def main():
     ax.set_xlabel("cells")
     ax.set_ylabel("ns per cell per RK3 step")
     ax.set_title("eulerfsi: cost of one step, pipe flow (bench_step)")
-    ax.legend(fontsize=7, ncol=2)
+    ax.legend(fontsize=7, ncol=1, loc="upper left")
     ax.grid(True, which="both", alpha=0.3)
     fig.tight_layout()
     fig.savefig(out, dpi=130)
