@@ -176,7 +176,11 @@ class Simulation {
   void restore() {
     const std::string path = opt_.restart_file.empty() ? checkpoint_path() : opt_.restart_file;
     const CheckpointMeta meta = read_checkpoint(path, grid_, comm_.comm, state_fields());
-    const CaseConfig before = parse_case_string(meta.config_toml, {}, path);
+    // checkpoints written before flow.pipe_wall existed ran the paper's staircase wall
+    std::vector<std::string> written_before_key;
+    if (cfg_.domain.geometry == Geometry::Pipe && meta.config_toml.find("pipe_wall") == std::string::npos)
+      written_before_key.push_back("flow.pipe_wall=\"sharp\"");
+    const CaseConfig before = parse_case_string(meta.config_toml, written_before_key, path);
     const auto changed = differing_physical_keys(before, cfg_);
     if (!changed.empty()) {
       std::string list;
