@@ -53,6 +53,9 @@ ParticleTracker::ParticleTracker(const CaseConfig& cfg, const Grid& grid, const 
 
 namespace {
 
+// The (y, z) part of a vector v along the radial direction e_r = (0, e_y, e_z).
+double radial_part(const double v[3], const double e_r[3]) { return v[1] * e_r[1] + v[2] * e_r[2]; }
+
 template <size_t N>
 void sum_all(const Comm& comm, double (&a)[N]) {
   MPI_Allreduce(MPI_IN_PLACE, a, int(N), MPI_DOUBLE, MPI_SUM, comm.comm);
@@ -167,8 +170,7 @@ std::vector<ParticleState> ParticleTracker::measure(const SolidPhase& solids, co
       f[9 + a] = forces.elastic[a];
     }
     sum_all(comm_, f);
-    for (int term = 0; term < 4; ++term)
-      s.force_paper[term] = f[3 * term + 1] * s.radial_dir[1] + f[3 * term + 2] * s.radial_dir[2];
+    for (int term = 0; term < 4; ++term) s.force_paper[term] = radial_part(f + 3 * term, s.radial_dir);
     auto budget = kernels::body_momentum(body.psi, flow.p_step, flow.vel, body.b, body.b_prev, body.G, 1.0 / cfg_.flow.Re,
                                          body.mu_s, grid_.h, box);
     double g[15];
@@ -176,9 +178,8 @@ std::vector<ParticleState> ParticleTracker::measure(const SolidPhase& solids, co
     for (int q = 0; q < 5; ++q)
       for (int a = 0; a < 3; ++a) g[3 * q + a] = parts[q][a];
     sum_all(comm_, g);
-    auto radial = [&](int q) { return g[3 * q + 1] * s.radial_dir[1] + g[3 * q + 2] * s.radial_dir[2]; };
-    s.momentum_r = radial(0);
-    for (int term = 0; term < 4; ++term) s.force[term] = radial(term + 1);
+    s.momentum_r = radial_part(g, s.radial_dir);
+    for (int term = 0; term < 4; ++term) s.force[term] = radial_part(g + 3 * (term + 1), s.radial_dir);
     out.push_back(s);
   }
   return out;

@@ -47,16 +47,6 @@ void copy_tensor(const kernels::Tensor6& dst, const kernels::Tensor6& src, const
   });
 }
 
-// The box grown by the ghost width, within the storage of the slab.
-Box grown_into_ghosts(const Box& b) {
-  Box g = b;
-  for (int d = 0; d < 3; ++d) {
-    g.lo[d] = std::max(0, b.lo[d] - kGhost);
-    g.hi[d] = b.hi[d] + kGhost;
-  }
-  return g;
-}
-
 kernels::Vector3 make_vector(const Grid& g, const char* label) {
   kernels::Vector3 v;
   for (int a = 0; a < 3; ++a) v.c[a] = g.make_field(label);
@@ -119,7 +109,7 @@ void ReferenceMapModel::advance_substep(SolidBody& body, const kernels::Velocity
   check_wall_gap(box);
   extrapolate(box);
   // B before the substep, ghosts included (the elastic force reads them); beyond, both are I
-  copy_tensor(body.b_prev, body.b, grown_into_ghosts(box));
+  copy_tensor(body.b_prev, body.b, box.grown(kGhost, grid_.all()));
   derive_solid(body, box);
   correct_volume(body, box);
   update_active_box();
