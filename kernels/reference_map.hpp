@@ -288,29 +288,6 @@ inline void solid_from_map(const Field3& psi, const Tensor6& b, const Vector3& q
   });
 }
 
-// Distance from (y, z) to the nearest no-slip wall: the pipe's circle r = R = 1/2, the planes
-// y = +-Ly/2 (channel, Couette; duct also z = +-Lz/2); none in a periodic box.
-struct WallDistance {
-  bool pipe = false, y_walls = false, z_walls = false;
-  double half_y = 0.5, half_z = 0.5;
-  KOKKOS_INLINE_FUNCTION double operator()(double y, double z) const {
-    double d = 1e300;
-    if (pipe) d = 0.5 - compat::sqrt(y * y + z * z);
-    if (y_walls) d = compat::fmin(d, half_y - compat::fabs(y));
-    if (z_walls) d = compat::fmin(d, half_z - compat::fabs(z));
-    return d;
-  }
-};
-
-// The smallest wall distance of a solid cell centre (level 1) in the box (1e300 if none).
-inline double solid_wall_distance(const Field3& level, const CellCentres& xc, const WallDistance& wall, const Box& box) {
-  double d = 1e300;
-  reduce_cells("eulerfsi::refmap::wall_gap", box, KOKKOS_LAMBDA(int i, int j, int k, double& m) {
-    if (level(i, j, k) == kLevelSolid) m = compat::fmin(m, wall(xc(1, j), xc(2, k)));
-  }, Kokkos::Min<double>(d));
-  return d;
-}
-
 // sum psi and sum |grad psi| (central differences) over the box, times the cell volume: the
 // body's volume and surface area (dV/dshift of the level shift, for the volume correction).
 inline void volume_and_area(const Field3& psi, const double h[3], const Box& box, double& volume, double& area) {
@@ -350,6 +327,24 @@ inline void extrapolate_wall_ghosts(const Vector3& q, int dir, int n_interior, c
       }
     });
   }
+}
+
+// Wall ghosts of the level field are unknown (0): their q is the linear extrapolation of the first
+// two owned cells, which may themselves be unknown (stale) during an extrapolation sweep; a
+// mirrored level would let the sweep fit through them, and a stale q(0) re-enters q(0) tripled
+// (q(-2) = 3 q(0) - 2 q(1)) every step: the divergence of a body within 4 cells of a wall.
+inline void clear_wall_ghosts(const Field3& level, int dir, int n_interior, const Box& all) {
+  const int lo = kGhost, hi = kGhost + n_interior - 1;
+  Box plane = all;
+  plane.lo[dir] = 0;
+  plane.hi[dir] = kGhost;
+  const int sj = dir == 1, sk = dir == 2;
+  for_each_cell("eulerfsi::refmap::wall_level", plane, KOKKOS_LAMBDA(int i, int j, int k) {
+    const int m = sj * j + sk * k + 1;  // ghost layer 1..kGhost
+    const int j0 = j * (1 - sj), k0 = k * (1 - sk);
+    level(i, j0 + sj * (lo - m), k0 + sk * (lo - m)) = 0.0;
+    level(i, j0 + sj * (hi + m), k0 + sk * (hi + m)) = 0.0;
+  });
 }
 
 }  // namespace eulerfsi::kernels

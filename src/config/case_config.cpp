@@ -618,20 +618,6 @@ void read_solids(const Reader& r, const toml::table& root, const DomainConfig& d
                                         " (the box is periodic)");
           break;
       }
-      // the reference map's known defect: it diverges with the surface too close to a wall
-      if (c.model == SolidModelKind::ReferenceMap && d.geometry != Geometry::Periodic && d.cells[1] > 0 &&
-          d.cells[2] > 0) {
-        const double h = std::min(Ly / d.cells[1], Lz / d.cells[2]);
-        double wall = d.geometry == Geometry::Pipe ? 0.5 - std::hypot(y, z) : Ly / 2 - std::abs(y);
-        if (d.geometry == Geometry::Duct) wall = std::min(wall, Lz / 2 - std::abs(z));
-        const double gap = wall - rad;
-        if (gap >= 0 && gap < kReferenceMapMinWallGapCells * h)
-          r.fail(s + ".center", s + ": its surface is " + fmt_derived(gap / h) + " cells from the wall; with " + s +
-                                    ".model = \"reference-map\" it must be at least " +
-                                    fmt_double(kReferenceMapMinWallGapCells) +
-                                    " cells away (closer, the map diverges: docs/STATUS.md); move it inward, refine "
-                                    "the grid, or use the paper model (" + ctr + ")");
-      }
     }
     out.push_back(c);
   }

@@ -63,9 +63,6 @@ enum class InitialSolidVelocity { Rest, Fluid };
 //   Paper: psi and B advected with WENO5 (the paper's method; needs ~48 cells per diameter)
 //   ReferenceMap: the reference position xi advected; psi and B derived from it (Kamrin et al. 2012)
 enum class SolidModelKind { Paper, ReferenceMap };
-// The reference map diverges when a sphere's surface comes closer to a no-slip wall than this many
-// cells (docs/STATUS.md): refused at check time and stopped at run time.
-constexpr double kReferenceMapMinWallGapCells = 4.0;
 
 struct SolidConfig {
   SolidShape shape = SolidShape::Sphere;

@@ -27,11 +27,6 @@ constexpr double kSolidReach = 3.0;
 // over 3 cells.
 constexpr double kHalfWidthCells = 1.5;
 
-// A sphere's surface must stay this many cells from a no-slip wall: closer, the map diverges (a
-// sphere of 6 cells across at Re = 100 in a 24-cell pipe or channel blew up within 40 steps at
-// 2.5 and 3.5 cells, ran stably at 4.5; docs/STATUS.md). Refused rather than left to blow up.
-constexpr double kMinWallGapCells = kReferenceMapMinWallGapCells;
-
 // Newton steps on the level shift at t = 0 (each divides the volume error by ~30).
 constexpr int kInitialVolumeIterations = 6;
 
@@ -64,12 +59,6 @@ ReferenceMapModel::ReferenceMapModel(const SolidConfig& solid, const CaseConfig&
   shape_.radius = 0.5 * solid.diameter;
   for (int a = 0; a < 3; ++a) shape_.period[a] = grid.bc[a] == Boundary::Periodic ? grid.length[a] : 0.0;
   shape_.top = grid.domain_lo(1) + solid.thickness;
-  const Geometry geo = cfg.domain.geometry;
-  wall_.pipe = geo == Geometry::Pipe;
-  wall_.y_walls = geo == Geometry::Channel || geo == Geometry::Couette || geo == Geometry::Duct;
-  wall_.z_walls = geo == Geometry::Duct;
-  wall_.half_y = 0.5 * grid.length[1];
-  wall_.half_z = 0.5 * grid.length[2];
   for (int a = 0; a < 3; ++a) {
     centres_.h[a] = grid.h[a];
     centres_.x0[a] = grid.centre(a, 0);
@@ -84,7 +73,7 @@ void ReferenceMapModel::set_initial_condition(SolidBody& body) {
   shape_.shift = 0.0;
   const Box box = grid_.interior();
   kernels::classify_solid(level_, q_, shape_, centres_, kSolidReach, true, grid_.h, box);
-  bc_->fill_scalar(level_);
+  fill_level(grid_.interior());
   active_ = box;
   extrapolate(box);
   // the smoothed edge adds 8 pi R int_0^eps (1 - H) s ds... = 5.5 % of a sphere 8 cells across:
@@ -105,29 +94,13 @@ void ReferenceMapModel::advance_substep(SolidBody& body, const kernels::Velocity
   fill_map_ghosts(box);
   // the body where it is now, then q outside it again from the body's own values
   kernels::classify_solid(level_, q_, shape_, centres_, kSolidReach, false, grid_.h, box);
-  fill(level_, box);
-  check_wall_gap(box);
+  fill_level(box);
   extrapolate(box);
   // B before the substep, ghosts included (the elastic force reads them); beyond, both are I
   copy_tensor(body.b_prev, body.b, box.grown(kGhost, grid_.all()));
   derive_solid(body, box);
   correct_volume(body, box);
   update_active_box();
-}
-
-// Throws when a sphere's surface has come closer to a wall than kMinWallGapCells (the solid cell
-// centres lie half a cell inside the surface).
-void ReferenceMapModel::check_wall_gap(const Box& region) const {
-  if (!shape_.sphere) return;  // a layer lies on its wall by construction
-  const double h = std::min(grid_.h[1], grid_.h[2]);
-  const double gap = comm_.min(kernels::solid_wall_distance(level_, centres_, wall_, region)) - 0.5 * h;
-  if (gap >= kMinWallGapCells * h) return;
-  char msg[400];
-  std::snprintf(msg, sizeof msg,
-                "a reference-map sphere has come within %.2f cells of the wall (%.4g); the reference map diverges "
-                "closer than %.0f cells (known defect, docs/STATUS.md): refine the grid or use solid.model = \"paper\"",
-                gap / h, gap, kMinWallGapCells);
-  throw std::runtime_error(msg);
 }
 
 // One Newton step on V(shift) = V0 with dV/dshift = the surface area; psi and B derived again.
@@ -147,7 +120,7 @@ void ReferenceMapModel::extrapolate(const Box& region) {
   for (int sweep = 1; sweep <= kBand; ++sweep) {
     kernels::extrapolation_sweep(q_, level_, sweep, region);
     fill_map_ghosts(region);
-    fill(level_, region);
+    fill_level(region);
   }
 }
 
@@ -172,7 +145,20 @@ void ReferenceMapModel::update_active_box() {
       search.lo[d] = std::max(all.lo[d], active_.lo[d] - kGhost);
       search.hi[d] = std::min(all.hi[d], active_.hi[d] + kGhost);
     }
-  if (!kernels::known_bounding_box(level_, search, known)) {
+  bool any = kernels::known_bounding_box(level_, search, known);
+  // Known cells in the x ghost planes belong to the body's part across this slab's x end (its
+  // periodic image on one rank, the neighbour's cells on several): they pull the box out to that
+  // end, so the cells there are classified and extrapolated before the cells next to the end read
+  // them (without this, a band that first reaches x = Lx reads stale q across it and blows up).
+  Box ghosts[2] = {all, all}, seen;
+  ghosts[0].hi[0] = interior.lo[0];
+  ghosts[1].lo[0] = interior.hi[0];
+  for (const Box& g : ghosts)
+    if (kernels::known_bounding_box(level_, g, seen)) {
+      known = any ? bounding_box(known, seen) : seen;
+      any = true;
+    }
+  if (!any) {
     active_ = Box{{interior.lo[0], interior.lo[1], interior.lo[2]}, {interior.lo[0], interior.lo[1], interior.lo[2]}};
     return;
   }
@@ -188,15 +174,35 @@ void ReferenceMapModel::update_active_box() {
 void ReferenceMapModel::fill_map_ghosts(const Box& changed_box) {
   const Box changed = whole_slab_ ? Box{{0, 0, 0}, {0, 0, 0}} : changed_box;  // empty: everywhere
   for (int a = 0; a < 3; ++a) fill(q_.c[a], changed);
+  const Box planes = wall_ghost_planes(changed);
+  for (int d = 1; d < 3; ++d)
+    if (near_wall(changed, d)) kernels::extrapolate_wall_ghosts(q_, d, grid_.n[d], planes);
+}
+
+// Ghosts of the level: exchanged like any field, but unknown at a wall (kernels::clear_wall_ghosts).
+void ReferenceMapModel::fill_level(const Box& changed_box) {
+  const Box changed = whole_slab_ ? Box{{0, 0, 0}, {0, 0, 0}} : changed_box;
+  fill(level_, changed);
+  const Box planes = wall_ghost_planes(changed);
+  for (int d = 1; d < 3; ++d)
+    if (near_wall(changed, d)) kernels::clear_wall_ghosts(level_, d, grid_.n[d], planes);
+}
+
+// The x-planes whose wall ghosts a change on `changed` (empty: everywhere) can reach: its own,
+// or all of them near the x ends, where the halo exchange changed the ghost planes too.
+Box ReferenceMapModel::wall_ghost_planes(const Box& changed) const {
   Box planes = grid_.all();
+  if (changed.empty() || changed.lo[0] < 2 * kGhost || changed.hi[0] > grid_.nx_local) return planes;
   planes.lo[0] = changed.lo[0];
   planes.hi[0] = changed.hi[0];
-  // near the x ends the halo exchange changed the ghost planes too
-  if (changed.empty() || changed.lo[0] < 2 * kGhost || changed.hi[0] > grid_.nx_local) planes = grid_.all();
-  for (int d = 1; d < 3; ++d) {
-    const bool near = changed.empty() || changed.lo[d] < kGhost + 2 || changed.hi[d] > kGhost + grid_.n[d] - 2;
-    if (grid_.bc[d] == Boundary::Wall && near) kernels::extrapolate_wall_ghosts(q_, d, grid_.n[d], planes);
-  }
+  return planes;
+}
+
+// Whether direction d has walls that a change on `changed` comes within two cells of (the wall
+// ghosts read the first two owned cells).
+bool ReferenceMapModel::near_wall(const Box& changed, int d) const {
+  if (grid_.bc[d] != Boundary::Wall) return false;
+  return changed.empty() || changed.lo[d] < kGhost + 2 || changed.hi[d] > kGhost + grid_.n[d] - 2;
 }
 
 // Ghosts of a field that changed only on `changed` (all of them on the whole-slab path, which
@@ -225,7 +231,7 @@ void ReferenceMapModel::restore_scalars(const std::map<std::string, double>& s) 
 void ReferenceMapModel::fill_ghosts(SolidBody& body) {
   fill_map_ghosts(grid_.interior());
   active_ = grid_.interior();  // searched again from the whole slab after a restore
-  bc_->fill_scalar(level_);
+  fill_level(grid_.interior());
   bc_->fill_scalar(body.psi);
   for (int c = 0; c < kernels::kTensorComponents; ++c) bc_->fill_scalar(body.b.c[c]);
   update_active_box();

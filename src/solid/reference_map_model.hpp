@@ -39,18 +39,19 @@ class ReferenceMapModel final : public SolidModel {
 
  private:
   void fill_map_ghosts(const Box& changed);
+  void fill_level(const Box& changed);
+  Box wall_ghost_planes(const Box& changed) const;
+  bool near_wall(const Box& changed, int d) const;
   void fill(const Field3& f, const Box& changed) const;
   void extrapolate(const Box& region);
   void derive_solid(SolidBody& body, const Box& region);
   void update_active_box();
   void correct_volume(SolidBody& body, const Box& region);
-  void check_wall_gap(const Box& region) const;
 
   Grid grid_;
   const BoundaryConditions* bc_;
   Comm comm_;
   kernels::ReferenceShape shape_;
-  kernels::WallDistance wall_;
   kernels::CellCentres centres_;
   kernels::Vector3 q_, rhs_, rhs_old_;
   Field3 level_;

@@ -7,9 +7,11 @@
 //  - pipe: one sphere straddling the periodic x boundary (it wraps: its box is the whole x range
 //    on one rank, and sits across the rank boundary on two) and one straddling x = Lx/2 (the
 //    boundary between the two ranks' slabs);
-//  - channel (walls in y, periodic z): one sphere with its edge 4.5 cells from the lower wall (the
+//  - channel (walls in y, periodic z): one sphere with its edge 1.5 cells from the lower wall (the
 //    wall extrapolation of the map runs on its x-planes only) and one straddling the periodic z
-//    boundary (so do the ghost fills along z).
+//    boundary (so do the ghost fills along z) whose band reaches x = Lx from inside during the run
+//    (its box must then take in the cells across x = Lx; it did not, and blew up: kSteps = 70
+//    gives it the steps to show that, 0.03 of a field's maximum without the fix).
 //
 // Tolerance: on one thread of one rank the two runs are bit for bit the same (measured: 0). The
 // only other difference is the order of the threaded sums (volume and area of the level shift,
@@ -48,9 +50,9 @@ CaseConfig two_spheres() {
 CaseConfig spheres_at_wall_and_z_boundary() {
   CaseConfig cfg = test::small_case(Geometry::Channel, 32, 24, 24, 4.0 / 3.0, 1.0, 1.0, 100.0, InitialFlow::Laminar);
   const double h = 1.0 / 24.0;
-  // edge 4.5 cells from the lower wall (the reference map needs 4); across the periodic z
-  // boundary, far from the walls
-  for (const auto& c : {std::array<double, 3>{0.4, -0.5 + 0.125 + 4.5 * h, 0.0}, std::array<double, 3>{1.0, 0.15, 0.49}}) {
+  // edge 1.5 cells from the lower wall; across the periodic z boundary, far from the walls, its
+  // band 4.6 cells short of x = Lx at the start
+  for (const auto& c : {std::array<double, 3>{0.4, -0.5 + 0.125 + 1.5 * h, 0.0}, std::array<double, 3>{0.85, 0.15, 0.49}}) {
     SolidConfig s;
     s.diameter = 0.25;
     s.center = c;
@@ -98,7 +100,7 @@ class ActiveBox : public ::testing::TestWithParam<int> {};
 TEST_P(ActiveBox, SameFieldsAsTheWholeSlab) {
   const CaseConfig cfg = GetParam() == 0 ? two_spheres() : spheres_at_wall_and_z_boundary();
   test::CoupledCase boxed(cfg), whole(cfg);
-  constexpr int kSteps = 40;
+  constexpr int kSteps = 70;
   run(boxed, false, kSteps);
   run(whole, true, kSteps);
 
