@@ -1,0 +1,62 @@
+#pragma once
+// A distributed 3-D real-to-real transform pair on the grid's x-slabs (FFTW-MPI), used to solve
+// the diagonal problems of the fast solvers: (a + b L_h) x = f with L_h the 7-point Laplacian,
+// whose eigenvectors are the transform's basis functions for the boundary rule of each direction:
+//   Periodic  R2HC / HC2R          theta_m = 2 pi m / n      (m = 0 .. n-1, halfcomplex order)
+//   EvenHalf  REDFT10 / REDFT01    theta_m = pi m / n        x(-1) = x(0): Neumann at the half-point
+//   OddHalf   RODFT10 / RODFT01    theta_m = pi (m+1) / n    x(-1) = -x(0): zero at the half-point
+//   OddFace   RODFT00 on n-1 faces theta_m = pi (m+1) / n    x(-1) = x(n-1) = 0: zero on the wall faces
+// with eigenvalue lambda = -4 sin^2(theta / 2) / h^2 (FFTW 3 manual, "What FFTW Really Computes", for the
+// definitions; the sine form avoids the cancellation of 2 (cos theta - 1) for small modes).
+// The spectrum is left transposed (y distributed): the backward transform takes it back, which
+// saves two of the four all-to-alls.
+#include <fftw3-mpi.h>
+#include "parallel/mpi.hpp"
+
+#include <cstddef>
+
+#include "core/types.hpp"
+#include "grid/grid.hpp"
+
+namespace eulerfsi {
+
+enum class R2rKind { Periodic, EvenHalf, OddHalf, OddFace };
+
+class FftwMpiR2r {
+ public:
+  // Estimate plans deterministically and at once; Measure may pick a faster algorithm but can
+  // differ between runs and rank counts in the last bits.
+  enum class Planning { Estimate, Measure };
+
+  // `who` names the caller in error messages.
+  FftwMpiR2r(const Grid& grid, MPI_Comm comm, const R2rKind kind[3], Planning planning, const char* who);
+  ~FftwMpiR2r();
+  FftwMpiR2r(const FftwMpiR2r&) = delete;
+  FftwMpiR2r& operator=(const FftwMpiR2r&) = delete;
+
+  // Overwrites the unknowns of f (storage kGhost + [0, n_d), n_d one less along an OddFace
+  // direction) with x = f / (a + b lambda), mode by mode; a mode whose denominator is exactly 0
+  // (the Poisson zero mode) is set to 0. Ghosts are neither read nor written.
+  void solve(const Field3& f, double a, double b);
+
+ private:
+  using HostBuffer3 = Kokkos::View<double***, Kokkos::LayoutRight, Kokkos::HostSpace, Kokkos::MemoryUnmanaged>;
+  using HostLine = Kokkos::View<double*, Kokkos::HostSpace>;
+  using Work3 = Kokkos::View<double***, Kokkos::LayoutRight, MemSpace>;
+  static constexpr bool kHostAccessible = Kokkos::SpaceAccessibility<Kokkos::HostSpace, MemSpace>::accessible;
+
+  int n_[3] = {0, 0, 0};          // unknowns per direction (the transform sizes)
+  int nx_local_ = 0;
+  ptrdiff_t local_n1_ = 0;        // y-planes of the transposed spectrum on this rank
+  ptrdiff_t local_1_start_ = 0;   // global y index of the first one
+  double* buf_ = nullptr;         // fftw_malloc'ed, in place for both transforms
+  fftw_plan forward_ = nullptr;
+  fftw_plan backward_ = nullptr;
+  HostBuffer3 physical_;          // buf_ as (nx_local, n1, n2): the x-slab in physical space
+  HostBuffer3 spectrum_;          // buf_ as (local_n1, n0, n2): FFTW_MPI_TRANSPOSED_OUT layout
+  Work3 work_;                    // contiguous copy of the unknowns in MemSpace (aliases buf_ on hosts)
+  HostLine lambda_[3];            // 1-D eigenvalues of the second difference, per direction
+  double scale_ = 1.0;            // 1 / (logical size of each transform): FFTW does not normalise
+};
+
+}  // namespace eulerfsi
