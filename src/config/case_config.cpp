@@ -31,7 +31,7 @@ const std::vector<Section>& schema() {
       {"domain", {"length", "cells", "geometry"}},
       {"flow", {"Re", "bulk_velocity", "wall_velocity", "wall_frequency", "initial", "penalization_eta", "pipe_wall",
                 "frame_velocity"}},
-      {"time", {"cfl", "dt", "t_end", "max_steps"}},
+      {"time", {"cfl", "dt", "t_end", "max_steps", "implicit_viscosity"}},
       {"output", {"dir", "every", "fields_every", "profiles_every", "checkpoint_every", "shape_times"}},
       {"solid", {"shape", "diameter", "center", "thickness", "We", "viscosity_ratio", "initial_velocity", "sharpening", "model"}},
   };
@@ -375,6 +375,14 @@ class Reader {
     if (const toml::node* n = t ? t->get(k) : nullptr) return out = number(*n, scope + "." + k), true;
     return false;
   }
+  bool get(const toml::table* t, const std::string& scope, const char* k, bool& out) const {
+    const toml::node* n = t ? t->get(k) : nullptr;
+    if (!n) return false;
+    const auto* b = n->as_boolean();
+    if (!b) fail_value(scope + "." + k, *n, "expected true or false, got a " + type_name(*n));
+    out = b->get();
+    return true;
+  }
   bool get(const toml::table* t, const std::string& scope, const char* k, long& out) const {
     if (const toml::node* n = t ? t->get(k) : nullptr) return out = integer(*n, scope + "." + k), true;
     return false;
@@ -511,6 +519,11 @@ void read_time(const Reader& r, const toml::table& root, TimeConfig& c) {
   r.require(c.t_end > 0, t, "time", "t_end", "must be > 0");
   r.get(t, "time", "max_steps", c.max_steps);
   r.require(c.max_steps >= 0, t, "time", "max_steps", "must be >= 0 (0 means no limit)");
+  r.get(t, "time", "implicit_viscosity", c.implicit_viscosity);
+#ifndef EULERFSI_HAVE_MPI
+  r.require(!c.implicit_viscosity, t, "time", "implicit_viscosity",
+            "must be false in this build: its Helmholtz solve uses FFTW-MPI (configure with -DEULERFSI_ENABLE_MPI=ON)");
+#endif
 }
 
 void read_output(const Reader& r, const toml::table& root, OutputConfig& o) {
@@ -726,7 +739,8 @@ std::string to_toml(const CaseConfig& c) {
      << "cfl = " << fmt_double(c.time.cfl) << "\n"
      << "dt = " << fmt_double(c.time.dt) << "\n"
      << "t_end = " << fmt_double(c.time.t_end) << "\n"
-     << "max_steps = " << c.time.max_steps << "\n";
+     << "max_steps = " << c.time.max_steps << "\n"
+     << "implicit_viscosity = " << (c.time.implicit_viscosity ? "true" : "false") << "\n";
   os << "\n[output]\n"
      << "dir = " << toml_str(c.output.dir) << "\n"
      << "every = " << c.output.every << "\n"

@@ -46,6 +46,9 @@ struct TimeConfig {
   double dt = 0.0;       // 0: adaptive
   double t_end = 10.0;
   long max_steps = 0;    // 0: no limit
+  // mu_f by Crank-Nicolson with a fast Helmholtz solve per component (the part mu - mu_f stays
+  // explicit): lifts the explicit viscous time-step limit
+  bool implicit_viscosity = false;
 };
 
 struct OutputConfig {

@@ -59,12 +59,12 @@ Box SolidPhase::active_box() const {
   return box;
 }
 
-// mu = mu_f where the previous call wrote, then mu_f + sum psi (mu_s - mu_f) on the bodies' box
-// with its ghosts (psi = 0 beyond it).
-void SolidPhase::mixture_viscosity(const Field3& mu, double mu_fluid) {
-  kernels::fill_box(mu, mu_fluid, mu_region_);
+// mu = background where the previous call wrote, then background + sum psi (mu_s - mu_f) on the
+// bodies' box with its ghosts (psi = 0 beyond it).
+void SolidPhase::mixture_viscosity(const Field3& mu, double mu_fluid, double background) {
+  kernels::fill_box(mu, background, mu_region_);
   mu_region_ = active_box().grown(kGhost, grid_.all());
-  kernels::fill_box(mu, mu_fluid, mu_region_);
+  kernels::fill_box(mu, background, mu_region_);
   for (const auto& body : bodies_) kernels::mixture_viscosity_add(mu, body.psi, body.mu_s - mu_fluid, mu_region_);
 }
 

@@ -36,7 +36,7 @@ class SolidPhase final : public SolidCoupling {
 
   // SolidCoupling: what the momentum equation needs
   void advance_substep(const kernels::Velocity& vel, double dt, int substep) override;
-  void mixture_viscosity(const Field3& mu, double mu_fluid) override;
+  void mixture_viscosity(const Field3& mu, double mu_fluid, double background) override;
   Box viscosity_region() const override { return mu_region_; }
   void add_elastic_force(const kernels::Velocity& rhs) const override;
   double max_wave_speed() const override;

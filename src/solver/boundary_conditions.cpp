@@ -18,9 +18,16 @@ WallVelocity BoundaryConditions::walls_at(double t) const {
   return {wall_u_[0] * s, wall_u_[1] * s};
 }
 
+double BoundaryConditions::wall_velocity(int c, int dir, bool high, double t) const {
+  if (c != 0) return 0.0;
+  // only u on the y walls moves in the laboratory (Couette); in the grid's frame every wall
+  // also moves with -frame_u in x
+  const WallVelocity walls = walls_at(t);
+  return (dir == 1 ? (high ? walls.u_hi : walls.u_lo) : 0.0) - frame_u_;
+}
+
 void BoundaryConditions::fill_velocity(const kernels::Velocity& vel, double t) const {
   for (int c = 0; c < 3; ++c) exchange_x(vel.c[c], grid_, comm_);
-  const WallVelocity walls = walls_at(t);
   for (int dir = 1; dir <= 2; ++dir) {
     for (int c = 0; c < 3; ++c) {
       if (grid_.bc[dir] == Boundary::Periodic) {
@@ -28,12 +35,8 @@ void BoundaryConditions::fill_velocity(const kernels::Velocity& vel, double t) c
       } else if (c == dir) {
         kernels::fill_ghosts(vel.c[c], dir, grid_.n[dir], GhostRule::Normal, 0.0, 0.0);
       } else {
-        // only u on the y walls moves in the laboratory (Couette); in the grid's frame every wall
-        // also moves with -frame_u in x
-        const bool moving = (c == 0 && dir == 1);
-        const double shift = c == 0 ? -frame_u_ : 0.0;
-        kernels::fill_ghosts(vel.c[c], dir, grid_.n[dir], GhostRule::Tangent, (moving ? walls.u_lo : 0.0) + shift,
-                             (moving ? walls.u_hi : 0.0) + shift);
+        kernels::fill_ghosts(vel.c[c], dir, grid_.n[dir], GhostRule::Tangent, wall_velocity(c, dir, false, t),
+                             wall_velocity(c, dir, true, t));
       }
     }
   }

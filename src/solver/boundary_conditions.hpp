@@ -19,6 +19,9 @@ class BoundaryConditions {
   BoundaryConditions(const CaseConfig& cfg, const Grid& grid, MPI_Comm comm);
   // Moving-wall velocity at time t (Couette, optionally oscillating).
   WallVelocity walls_at(double t) const;
+  // Velocity component c of the wall across direction dir (1 or 2), low or high side, at time t,
+  // in the grid's frame (c != dir: the wall-normal component is zero).
+  double wall_velocity(int c, int dir, bool high, double t) const;
   void fill_velocity(const kernels::Velocity& vel, double t) const;
   // The grid's x-velocity in the laboratory: every wall moves with -frame_u relative to it.
   void set_frame_velocity(double frame_u) { frame_u_ = frame_u; }

@@ -20,7 +20,13 @@ FlowSolver::FlowSolver(const CaseConfig& cfg, const Grid& grid, const Comm& comm
       mu_(grid.make_field("mu")), poisson_(make_poisson_solver(grid, comm.comm)), mu_fluid_(1.0 / cfg.flow.Re) {
   const Geometry geo = cfg.domain.geometry;
   impose_flow_rate_ = geo == Geometry::Pipe || geo == Geometry::Duct || geo == Geometry::Channel;
-  Kokkos::deep_copy(mu_, mu_fluid_);
+  mu_explicit_ = mu_fluid_;
+  if (cfg.time.implicit_viscosity) {
+    helmholtz_ = make_helmholtz_solver(grid, comm.comm);
+    implicit_rhs_ = grid.make_field("implicit_viscosity_rhs");
+    mu_explicit_ = 0.0;
+  }
+  Kokkos::deep_copy(mu_, mu_explicit_);
   build_wall_masks();
 }
 
@@ -169,48 +175,42 @@ double FlowSolver::stable_dt(double extra_wave_speed) const {
   // RK3 is stable on the negative real axis to 2.51; 1.65 keeps a margin (as CaNS does)
   double inv_h2 = 0.0;
   for (int d = 0; d < 3; ++d) inv_h2 += 1.0 / (grid_.h[d] * grid_.h[d]);
-  double mu_max = mu_fluid_;
-  for (const auto& s : cfg_.solids) mu_max = std::max(mu_max, s.viscosity_ratio * mu_fluid_);
-  const double dt_visc = 1.65 / (4.0 * mu_max * inv_h2);
+  // the largest viscosity taken explicitly: the mixture's, or only its part beyond mu_f
+  const double mu_implicit = mu_fluid_ - mu_explicit_;  // 0, or mu_f with time.implicit_viscosity
+  double mu_max = mu_explicit_;
+  for (const auto& s : cfg_.solids) mu_max = std::max(mu_max, std::fabs(s.viscosity_ratio * mu_fluid_ - mu_implicit));
+  const double dt_visc = mu_max > 0.0 ? 1.65 / (4.0 * mu_max * inv_h2) : 1e300;
   return std::min(dt_conv, dt_visc);
 }
 
 void FlowSolver::advance(double t, double dt, SolidCoupling* solids) {
   const Box box = grid_.interior();
   auto& vel = state_.vel;
-  double dpdx_step = 0.0;
+  // With the implicit viscosity the last step's mean pressure gradient drives the predictor and the
+  // flow-rate correction takes only its change: a uniform correction is not a steady state of the
+  // Crank-Nicolson half (its Laplacian is not zero at the walls), so it must vanish at one.
+  dpdx_applied_ = helmholtz_ && impose_flow_rate_ ? dpdx_ : 0.0;
+  double dpdx_step = dpdx_applied_;
   for (int s = 0; s < Rk3::stages; ++s) {
-    const double gamma = Rk3::gamma[s], zeta = Rk3::zeta[s], alpha_dt = Rk3::alpha(s) * dt;
+    const double alpha_dt = Rk3::alpha(s) * dt;
     const double t_next = t + (s + 1 < Rk3::stages ? Rk3::start(s + 1) : 1.0) * dt;
     // (i) advance psi and B with the current velocity; mixture viscosity from the new psi
     if (solids) {
       solids->advance_substep(vel, dt, s);
-      solids->mixture_viscosity(mu_, mu_fluid_);
+      solids->mixture_viscosity(mu_, mu_fluid_, mu_explicit_);
     }
     // (ii) explicit momentum right-hand side: advection + viscous (+ elastic stress); the
     // mixture viscosity only where it differs from mu_f (a face's stencil reads mu one cell away)
     const Box mixture = solids ? solids->viscosity_region().grown(1, box) : Box{{0, 0, 0}, {0, 0, 0}};
-    if (mixture.size() < box.size()) kernels::momentum_rhs(rhs_new_, vel, mu_fluid_, grid_.h, box);
+    if (mixture.size() < box.size()) kernels::momentum_rhs(rhs_new_, vel, mu_explicit_, grid_.h, box);
     if (!mixture.empty()) kernels::momentum_rhs(rhs_new_, vel, mu_, grid_.h, mixture);
     if (solids) solids->add_elastic_force(rhs_new_);
     // (iii) predictor with implicit penalization of the pipe wall
-    const double penal = alpha_dt / cfg_.flow.penalization_eta;
-    static const char* labels[3] = {"eulerfsi::rk3::update_u", "eulerfsi::rk3::update_v", "eulerfsi::rk3::update_w"};
-    static const char* wall_labels[3] = {"eulerfsi::penalization::wall_u", "eulerfsi::penalization::wall_v",
-                                         "eulerfsi::penalization::wall_w"};
-    const bool interpolated = cfg_.flow.pipe_wall == PipeWall::Interpolated && masks_.chi[0].extent(0) > 0;
-    for (int c = 0; c < 3; ++c) {
-      // the wall is at rest in the laboratory: u_wall = -frame_u in the grid's frame
-      const double u_wall = c == 0 ? -frame_u_ : 0.0;
-      kernels::rk3_update(vel.c[c], rhs_new_.c[c], rhs_old_.c[c], interpolated ? masks_.chi_wall[c] : masks_.chi[c],
-                          dt, gamma, zeta, penal, box, labels[c], u_wall);
-      std::swap(rhs_new_.c[c], rhs_old_.c[c]);
+    if (helmholtz_) {
+      predict_implicit_viscosity(t_next, dt, s);
+    } else {
+      predict(t_next, dt, s);
     }
-    // the interpolated wall reads the predicted velocity of its inner neighbours: a second pass
-    if (interpolated)
-      for (int c = 0; c < 3; ++c)
-        kernels::penalize_wall_layer(vel.c[c], masks_.layer[c], masks_.weight[c], masks_.neighbour[c], penal, box,
-                                     wall_labels[c], c == 0 ? -frame_u_ : 0.0);
     bc_.fill_velocity(vel, t_next);
     // (iv) projection
     project(alpha_dt);
@@ -221,6 +221,65 @@ void FlowSolver::advance(double t, double dt, SolidCoupling* solids) {
   }
   if (impose_flow_rate_) dpdx_ = dpdx_step;
   frame_x_ += frame_u_ * dt;
+}
+
+namespace {
+const char* const kUpdateLabels[3] = {"eulerfsi::rk3::update_u", "eulerfsi::rk3::update_v", "eulerfsi::rk3::update_w"};
+const char* const kWallLabels[3] = {"eulerfsi::penalization::wall_u", "eulerfsi::penalization::wall_v",
+                                    "eulerfsi::penalization::wall_w"};
+}  // namespace
+
+// u* = u + dt (gamma rhs + zeta rhs_old), the pipe wall penalized implicitly (kernels/time_update.hpp).
+void FlowSolver::predict(double /*t_next*/, double dt, int s) {
+  const Box box = grid_.interior();
+  auto& vel = state_.vel;
+  const double penal = Rk3::alpha(s) * dt / cfg_.flow.penalization_eta;
+  const bool interpolated = cfg_.flow.pipe_wall == PipeWall::Interpolated && masks_.chi[0].extent(0) > 0;
+  for (int c = 0; c < 3; ++c) {
+    // the wall is at rest in the laboratory: u_wall = -frame_u in the grid's frame
+    const double u_wall = c == 0 ? -frame_u_ : 0.0;
+    kernels::rk3_update(vel.c[c], rhs_new_.c[c], rhs_old_.c[c], interpolated ? masks_.chi_wall[c] : masks_.chi[c], dt,
+                        Rk3::gamma[s], Rk3::zeta[s], penal, box, kUpdateLabels[c], u_wall);
+    std::swap(rhs_new_.c[c], rhs_old_.c[c]);
+  }
+  // the interpolated wall reads the predicted velocity of its inner neighbours: a second pass
+  if (interpolated)
+    for (int c = 0; c < 3; ++c)
+      kernels::penalize_wall_layer(vel.c[c], masks_.layer[c], masks_.weight[c], masks_.neighbour[c], penal, box,
+                                   kWallLabels[c], c == 0 ? -frame_u_ : 0.0);
+}
+
+// The same with mu_f by Crank-Nicolson: (I - c L_h) u* = u + dt (gamma rhs + zeta rhs_old) + c L_h u
+// with c = alpha dt mu_f / 2, the wall's velocity at t_next in the right-hand side; the pipe wall
+// is a direct forcing in that right-hand side (kernels::force_implicit_wall: the penalization is
+// not part of the operator the transforms invert).
+void FlowSolver::predict_implicit_viscosity(double t_next, double dt, int s) {
+  const Box box = grid_.interior();
+  auto& vel = state_.vel;
+  const double penal = Rk3::alpha(s) * dt / cfg_.flow.penalization_eta;
+  const double c_imp = 0.5 * Rk3::alpha(s) * dt * mu_fluid_;
+  const bool interpolated = cfg_.flow.pipe_wall == PipeWall::Interpolated && masks_.chi[0].extent(0) > 0;
+  for (int c = 0; c < 3; ++c) {
+    kernels::implicit_viscosity_rhs(implicit_rhs_, vel.c[c], rhs_new_.c[c], rhs_old_.c[c], dt, Rk3::gamma[s],
+                                    Rk3::zeta[s], c_imp, grid_.h, box);
+    if (c == 0 && dpdx_applied_ != 0.0)
+      kernels::add_open_x_velocity(implicit_rhs_, masks_.open_u, -Rk3::alpha(s) * dt * dpdx_applied_, box);
+    for (int dir = 1; dir <= 2; ++dir) {
+      if (grid_.bc[dir] != Boundary::Wall || c == dir) continue;  // the wall-normal component is zero there
+      const double k = 2.0 * c_imp / (grid_.h[dir] * grid_.h[dir]);
+      kernels::add_wall_velocity_term(implicit_rhs_, dir, grid_.n[dir], k * bc_.wall_velocity(c, dir, false, t_next),
+                                      k * bc_.wall_velocity(c, dir, true, t_next), box);
+    }
+    const double u_wall = c == 0 ? -frame_u_ : 0.0;
+    kernels::force_implicit_wall(implicit_rhs_, vel.c[c], interpolated ? masks_.chi_wall[c] : masks_.chi[c], penal,
+                                 u_wall, c_imp, grid_.h, box, kUpdateLabels[c]);
+    if (interpolated)
+      kernels::force_implicit_wall_layer(implicit_rhs_, vel.c[c], masks_.layer[c], masks_.weight[c],
+                                         masks_.neighbour[c], penal, u_wall, c_imp, grid_.h, box, kWallLabels[c]);
+    helmholtz_->solve(c, implicit_rhs_, c_imp);
+    Kokkos::deep_copy(vel.c[c], implicit_rhs_);  // ghosts too: refilled by the caller
+    std::swap(rhs_new_.c[c], rhs_old_.c[c]);
+  }
 }
 
 void FlowSolver::set_frame_velocity(double u_frame, double t) {

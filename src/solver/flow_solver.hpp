@@ -6,6 +6,7 @@
 #include "config/case_config.hpp"
 #include "grid/grid.hpp"
 #include "parallel/comm.hpp"
+#include "poisson/helmholtz_solver.hpp"
 #include "poisson/poisson_solver.hpp"
 #include "solver/boundary_conditions.hpp"
 #include "solver/flow_state.hpp"
@@ -66,6 +67,8 @@ class FlowSolver {
  private:
   void build_wall_masks();
   void project(double alpha_dt);
+  void predict(double t_next, double dt, int substep);
+  void predict_implicit_viscosity(double t_next, double dt, int substep);
   double correct_flow_rate();
 
   CaseConfig cfg_;
@@ -78,6 +81,12 @@ class FlowSolver {
   WallMasks masks_;
   std::unique_ptr<PoissonSolver> poisson_;
   double mu_fluid_;
+  // time.implicit_viscosity: mu_f by Crank-Nicolson (the solver and its right-hand side), the
+  // explicit momentum then carries only mu - mu_f (mu_explicit_ is its value in the fluid)
+  std::unique_ptr<HelmholtzSolver> helmholtz_;
+  Field3 implicit_rhs_;
+  double mu_explicit_ = 0.0;
+  double dpdx_applied_ = 0.0;  // the mean pressure gradient in this step's predictor
   double open_faces_ = 1.0;    // x-faces the flow-rate correction moves, weighted by their share
   double inside_faces_ = 1.0;  // global count of x-faces inside the pipe (the flow-rate sum)
   double flow_faces_ = 1.0;    // the cross-section the bulk velocity is over, in face areas (times Nx)

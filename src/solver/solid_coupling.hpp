@@ -11,11 +11,12 @@ class SolidCoupling {
   virtual ~SolidCoupling() = default;
   // (i) of the substep: every body's shape and deformation advanced with the current velocity.
   virtual void advance_substep(const kernels::Velocity& vel, double dt, int substep) = 0;
-  // mu = mu_f + sum_s psi_s (mu_s - mu_f), ghosts included. `mu` must hold mu_f outside
-  // viscosity_region() on entry (the solver's mu is written by this call only).
-  virtual void mixture_viscosity(const Field3& mu, double mu_fluid) = 0;
-  // Where the last mixture_viscosity() call left mu != mu_f possible (storage indices, ghosts
-  // included); outside it the momentum equation takes the constant-viscosity path.
+  // mu = background + sum_s psi_s (mu_s - mu_f), ghosts included: background = mu_f gives the
+  // mixture viscosity, 0 its part beyond mu_f (when mu_f is taken implicitly). `mu` must hold
+  // `background` outside viscosity_region() on entry (the solver's mu is written by this call only).
+  virtual void mixture_viscosity(const Field3& mu, double mu_fluid, double background) = 0;
+  // Where the last mixture_viscosity() call left mu != background possible (storage indices,
+  // ghosts included); outside it the momentum equation takes the constant-viscosity path.
   virtual Box viscosity_region() const = 0;
   // rhs_D += d/dx_E [ psi G ((B^k + B^(k-1))/2 - I)_DE ] for every body.
   virtual void add_elastic_force(const kernels::Velocity& rhs) const = 0;
