@@ -351,6 +351,24 @@ inline BodyMomentum body_momentum(const Field3& psi, const Field3& p, const Velo
   return r;
 }
 
+// sum psi cos(2 pi x_d / L) and sum psi sin(2 pi x_d / L) over the box (times dV) for the periodic
+// direction d = 1 or 2: the circular mean of a body that may straddle that direction's boundary
+// (the plain mean of one that does lies half a period off).
+inline void body_circular_moments(const Field3& psi, const CellCentres& xc, int d, double L, const Box& box,
+                                  double psi_min, double out[2]) {
+  const double dv = xc.h[0] * xc.h[1] * xc.h[2], kd = 2.0 * M_PI / L;
+  for (int q = 0; q < 2; ++q) {
+    double s = 0.0;
+    reduce_cells("eulerfsi::diag::body_circular_moments", box, KOKKOS_LAMBDA(int i, int j, int k, double& acc) {
+      const double p = psi(i, j, k);
+      if (p < psi_min) return;
+      const double arg = kd * (d == 1 ? xc(1, j) : xc(2, k));
+      acc += p * (q == 0 ? compat::cos(arg) : compat::sin(arg));
+    }, Kokkos::Sum<double>(s));
+    out[q] = s * dv;
+  }
+}
+
 // Host: x-centroid as the circular mean of psi on the periodic x axis, in [0, Lx). Exact for a
 // body symmetric about its centre; in general a reference point within the body from which
 // body_second_moments' m1 gives the exact unwrapped centroid c = ref + m1 / volume (minimum image,

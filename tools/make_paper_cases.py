@@ -19,15 +19,20 @@ RESOLUTIONS = {
     # The paper: 720 x 240 x 240 uniform cells, 48 per particle diameter (d = D/5). 720 cells of
     # D/240 make the pipe 3D long, although the text says 6D: set domain.length = [6, 1, 1] and
     # domain.cells = [1440, 240, 240] for the 6D reading (twice the cost).
-    "paper": dict(cells=(720, 240, 240), every=100, fields_every=50000, checkpoint_every=5000,
+    # The paper's own method (psi and B advected with WENO5) at the paper's CFL.
+    "paper": dict(cells=(720, 240, 240), every=100, fields_every=50000, checkpoint_every=5000, cfl=0.2,
+                  model="paper",
                   note="paper resolution: 240 cells across the pipe, 48 per particle diameter"),
     # 12 cells per particle diameter (60 across the pipe): the finest a 2-core desk can take far.
-    # What it costs (measured, docs/STATUS.md): with the grid following the particle its
-    # translation no longer smears it, but its rotation and tank-treading still do (a sphere in
-    # rigid rotation at 8 cells per diameter reads D = 0.02 after one radian), so D drifts upward
-    # over long runs; treat t_cen, t_rev and T_osc from these runs as qualitative.
-    "desk": dict(cells=(180, 60, 60), every=20, fields_every=5000, checkpoint_every=1000,
-                 note="desk resolution: 60 cells across the pipe, 12 per particle diameter (qualitative: see docs/STATUS.md)"),
+    # The paper's model smears under rotation at this resolution (a sphere in rigid rotation at 8
+    # cells per diameter reads D = 0.02 after one radian; docs/STATUS.md), the reference map does
+    # not (D 3.5e-7 after 10 rad) and agrees with itself between 8 and 12 cells per d to ~0.01 R
+    # over 20 time units (docs/REFERENCE_MAP.md): desk runs the reference map. CFL 0.4: the CFL
+    # study (same page) found r/R within 0.0025 and D within 0.0022 of CFL 0.2 at t = 5, below
+    # the 8-to-12-cell difference.
+    "desk": dict(cells=(180, 60, 60), every=20, fields_every=5000, checkpoint_every=1000, cfl=0.4,
+                 model="reference-map",
+                 note="desk resolution: 60 cells across the pipe, 12 per particle diameter, the reference map (docs/REFERENCE_MAP.md)"),
 }
 
 
@@ -65,7 +70,7 @@ initial = "{"rest" if rest else "laminar"}"
 frame_velocity = "particle"
 
 [time]
-cfl = 0.2
+cfl = {p['cfl']}
 t_end = 200.0
 
 [output]
@@ -82,6 +87,7 @@ center = [0.75, {yc:.6f}, {zc:.6f}]
 We = {we:g}
 viscosity_ratio = {visc:g}
 initial_velocity = "rest"
+model = "{p['model']}"
 """
 
 

@@ -17,6 +17,9 @@ constexpr double kFlowFields = 12.0;
 // one-rank DCT solver's real and half-complex arrays and its line buffers.
 constexpr double kPoissonFieldsFftwMpi = 2.0;
 constexpr double kPoissonFieldsFftDct = 4.0;
+// time.implicit_viscosity: its right-hand side and, per velocity component, a transform with
+// the Poisson solver's footprint (src/poisson/helmholtz_solver.cpp; one shared buffer would save two).
+constexpr double kImplicitViscosityFields = 1.0 + 3.0 * kPoissonFieldsFftwMpi;
 // Field snapshots: total psi and the three centred velocity components.
 constexpr double kSnapshotFields = 4.0;
 // Every body: psi, B and B before the update (6 + 6) (src/solid/solid_body.hpp).
@@ -70,7 +73,8 @@ MemoryEstimate estimate_memory(const CaseConfig& cfg, const Grid& grid) {
   const bool fft_dct = false;
 #endif
   m.flow_fields = kFlowFields + (fft_dct ? kPoissonFieldsFftDct : kPoissonFieldsFftwMpi) +
-                  (cfg.output.fields_every > 0 ? kSnapshotFields : 0.0);
+                  (cfg.output.fields_every > 0 ? kSnapshotFields : 0.0) +
+                  (cfg.time.implicit_viscosity ? kImplicitViscosityFields : 0.0);
   for (const auto& s : cfg.solids)
     m.solid_fields += kBodyFields + (s.model == SolidModelKind::Paper ? kPaperModelFields : kReferenceMapFields);
   return m;

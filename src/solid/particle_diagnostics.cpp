@@ -112,11 +112,19 @@ std::vector<ParticleState> ParticleTracker::measure(const SolidPhase& solids, co
       sum_all(comm_, first.s);
     }
     const double core_volume = first.s[F::Volume];
-    // reference point: circular mean in x, plain mean in y, z; then the exact moments about it
-    const double ref[3] = {kernels::circular_mean_x(first.s[F::Cos], first.s[F::Sin], lx),
-                           first.s[F::Y] / core_volume, first.s[F::Z] / core_volume};
+    // reference point: circular mean in x and in periodic y, z (a body may straddle their
+    // boundaries), plain mean across walls; then the exact moments about it
     const double period[3] = {lx, grid_.bc[1] == Boundary::Periodic ? grid_.length[1] : 0.0,
                               grid_.bc[2] == Boundary::Periodic ? grid_.length[2] : 0.0};
+    double ref[3] = {kernels::circular_mean_x(first.s[F::Cos], first.s[F::Sin], lx), first.s[F::Y] / core_volume,
+                     first.s[F::Z] / core_volume};
+    for (int d = 1; d < 3; ++d) {
+      if (period[d] == 0.0) continue;
+      double cs[2];
+      kernels::body_circular_moments(body.psi, xc, d, period[d], box, cut, cs);
+      sum_all(comm_, cs);
+      ref[d] = std::atan2(cs[1], cs[0]) * period[d] / (2.0 * M_PI);  // in (-L/2, L/2], the domain's range
+    }
     auto second = kernels::body_second_moments(body.psi, xc, ref, period, box, cut);
     double m[9];
     for (int a = 0; a < 3; ++a) m[a] = second.m1[a];
@@ -128,6 +136,9 @@ std::vector<ParticleState> ParticleTracker::measure(const SolidPhase& solids, co
     const double prev = last_x_[n];
     last_x_[n] = c_local[0] + lx * std::round((prev - c_local[0]) / lx);
     s.centre[0] = last_x_[n] + frame.offset;
+    // y, z back into the domain [-L/2, L/2) where periodic
+    for (int d = 1; d < 3; ++d)
+      if (period[d] > 0.0) c_local[d] -= period[d] * std::floor(c_local[d] / period[d] + 0.5);
     s.centre[1] = c_local[1];
     s.centre[2] = c_local[2];
     for (int a = 0; a < 3; ++a) s.velocity[a] = first.s[F::U + a] / core_volume;
