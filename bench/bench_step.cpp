@@ -22,12 +22,14 @@ using namespace eulerfsi;
 
 using bench::pipe_case;
 
-void BM_Step(benchmark::State& state) {
+// implicit: time.implicit_viscosity (three Helmholtz solves per substep besides the Poisson one)
+void step_benchmark(benchmark::State& state, bool implicit) {
   const Comm comm;
   // particle: 0 none, 1 the paper's model, 2 the reference map
   const bool particle = state.range(3) != 0;
   const SolidModelKind model = state.range(3) == 2 ? SolidModelKind::ReferenceMap : SolidModelKind::Paper;
-  const CaseConfig cfg = pipe_case(int(state.range(0)), int(state.range(1)), int(state.range(2)), particle, model);
+  CaseConfig cfg = pipe_case(int(state.range(0)), int(state.range(1)), int(state.range(2)), particle, model);
+  cfg.time.implicit_viscosity = implicit;
   const Grid grid = make_grid(cfg, comm);
   FlowSolver flow(cfg, grid, comm);
   SolidPhase solids(cfg, grid, flow.boundaries(), comm);
@@ -64,8 +66,11 @@ void BM_Step(benchmark::State& state) {
   state.counters["threads"] = benchmark::Counter(ExecSpace().concurrency());
   state.counters["ranks"] = benchmark::Counter(comm.size());
   static const char* labels[3] = {"pipe ", "pipe+sphere(paper) ", "pipe+sphere(refmap) "};
-  state.SetLabel(std::string(labels[state.range(3)]) + compat::default_backend_name());
+  state.SetLabel(std::string(labels[state.range(3)]) + (implicit ? "implicit-viscosity " : "") +
+                 compat::default_backend_name());
 }
+
+void BM_Step(benchmark::State& state) { step_benchmark(state, false); }
 
 BENCHMARK(BM_Step)
     ->ArgNames({"nx", "ny", "nz", "particle"})
@@ -79,6 +84,16 @@ BENCHMARK(BM_Step)
     ->Args({160, 80, 80, 0})
     ->Args({160, 80, 80, 1})
     ->Args({160, 80, 80, 2})
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+
+// The same step with time.implicit_viscosity: what the larger time step has to pay back.
+void BM_StepImplicitViscosity(benchmark::State& state) { step_benchmark(state, true); }
+BENCHMARK(BM_StepImplicitViscosity)
+    ->ArgNames({"nx", "ny", "nz", "particle"})
+    ->Args({64, 64, 64, 0})
+    ->Args({128, 64, 64, 0})
+    ->Args({128, 64, 64, 2})
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 
