@@ -67,7 +67,16 @@ double logical_size(int n, R2rKind kind) {
 
 }  // namespace
 
-FftwMpiR2r::FftwMpiR2r(const Grid& grid, MPI_Comm comm, const R2rKind kind[3], Planning planning, const char* who) {
+size_t FftwMpiR2r::buffer_size(const Grid& grid, MPI_Comm comm, const R2rKind kind[3]) {
+  ensure_fftw_mpi_init();
+  ptrdiff_t n0, s0, n1, s1;
+  const ptrdiff_t alloc = fftw_mpi_local_size_3d_transposed(unknowns(grid.n[0], kind[0]), unknowns(grid.n[1], kind[1]),
+                                                            unknowns(grid.n[2], kind[2]), comm, &n0, &s0, &n1, &s1);
+  return size_t(alloc > 0 ? alloc : 1);
+}
+
+FftwMpiR2r::FftwMpiR2r(const Grid& grid, MPI_Comm comm, const R2rKind kind[3], Planning planning, const char* who,
+                       double* shared) {
   ensure_fftw_mpi_init();
   for (int d = 0; d < 3; ++d) n_[d] = unknowns(grid.n[d], kind[d]);
   nx_local_ = grid.nx_local;
@@ -87,7 +96,8 @@ FftwMpiR2r::FftwMpiR2r(const Grid& grid, MPI_Comm comm, const R2rKind kind[3], P
                              " (or another rank disagrees); build the Grid with the rank and size of this communicator");
   }
 
-  buf_ = fftw_alloc_real(size_t(alloc_local > 0 ? alloc_local : 1));
+  owns_buffer_ = shared == nullptr;
+  buf_ = shared ? shared : fftw_alloc_real(size_t(alloc_local > 0 ? alloc_local : 1));
   if (!buf_) throw std::runtime_error(std::string(who) + ": fftw_alloc_real failed");
 
   fftw_r2r_kind fwd[3], bwd[3];
@@ -107,7 +117,7 @@ FftwMpiR2r::FftwMpiR2r(const Grid& grid, MPI_Comm comm, const R2rKind kind[3], P
   if (!forward_ || !backward_) {
     if (forward_) fftw_destroy_plan(forward_);
     if (backward_) fftw_destroy_plan(backward_);
-    fftw_free(buf_);
+    if (owns_buffer_) fftw_free(buf_);
     throw std::runtime_error(std::string(who) + ": FFTW-MPI could not plan the " + std::to_string(n_[0]) + "x" +
                              std::to_string(n_[1]) + "x" + std::to_string(n_[2]) + " r2r transform");
   }
@@ -127,7 +137,7 @@ FftwMpiR2r::FftwMpiR2r(const Grid& grid, MPI_Comm comm, const R2rKind kind[3], P
 FftwMpiR2r::~FftwMpiR2r() {
   fftw_destroy_plan(forward_);
   fftw_destroy_plan(backward_);
-  fftw_free(buf_);
+  if (owns_buffer_) fftw_free(buf_);
 }
 
 void FftwMpiR2r::solve(const Field3& f, double a, double b) {

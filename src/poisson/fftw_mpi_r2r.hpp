@@ -28,8 +28,13 @@ class FftwMpiR2r {
   // differ between runs and rank counts in the last bits.
   enum class Planning { Estimate, Measure };
 
-  // `who` names the caller in error messages.
-  FftwMpiR2r(const Grid& grid, MPI_Comm comm, const R2rKind kind[3], Planning planning, const char* who);
+  // `who` names the caller in error messages. `shared`: an fftw_alloc_real'ed buffer of at least
+  // buffer_size() doubles that several transforms used one after the other may share (not freed
+  // here); null: this transform allocates its own.
+  FftwMpiR2r(const Grid& grid, MPI_Comm comm, const R2rKind kind[3], Planning planning, const char* who,
+             double* shared = nullptr);
+  // Doubles of the in-place buffer this transform needs on this rank.
+  static size_t buffer_size(const Grid& grid, MPI_Comm comm, const R2rKind kind[3]);
   ~FftwMpiR2r();
   FftwMpiR2r(const FftwMpiR2r&) = delete;
   FftwMpiR2r& operator=(const FftwMpiR2r&) = delete;
@@ -50,6 +55,7 @@ class FftwMpiR2r {
   ptrdiff_t local_n1_ = 0;        // y-planes of the transposed spectrum on this rank
   ptrdiff_t local_1_start_ = 0;   // global y index of the first one
   double* buf_ = nullptr;         // fftw_malloc'ed, in place for both transforms
+  bool owns_buffer_ = true;
   fftw_plan forward_ = nullptr;
   fftw_plan backward_ = nullptr;
   HostBuffer3 physical_;          // buf_ as (nx_local, n1, n2): the x-slab in physical space

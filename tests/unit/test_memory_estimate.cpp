@@ -33,8 +33,14 @@ double resident_bytes() {
   return 0.0;
 }
 
+// 0: the flow alone, 1: one paper-model body, 2: one reference-map body, 3: the flow with
+// time.implicit_viscosity
 CaseConfig pipe(int particle) {
   CaseConfig cfg = test::small_case(Geometry::Pipe, 96, 48, 48, 2.0, 1.0, 1.0, 100.0, InitialFlow::Laminar);
+  if (particle == 3) {
+    cfg.time.implicit_viscosity = true;
+    return cfg;
+  }
   if (particle > 0) {
     SolidConfig s;
     s.diameter = 0.2;
@@ -70,7 +76,7 @@ TEST_P(MemoryEstimateTest, CoversWhatARunTakes) {
   EXPECT_LT(estimate, 1.15 * growth);
 }
 
-INSTANTIATE_TEST_SUITE_P(FlowPaperReferenceMap, MemoryEstimateTest, ::testing::Values(0, 1, 2));
+INSTANTIATE_TEST_SUITE_P(FlowPaperReferenceMap, MemoryEstimateTest, ::testing::Values(0, 1, 2, 3));
 
 TEST(MemoryEstimate, RefusesWhatCannotFit) {
   CaseConfig cfg = pipe(1);
