@@ -49,6 +49,7 @@ void expect_same(const CaseConfig& a, const CaseConfig& b) {
   EXPECT_EQ(a.time.dt, b.time.dt);
   EXPECT_EQ(a.time.t_end, b.time.t_end);
   EXPECT_EQ(a.time.max_steps, b.time.max_steps);
+  EXPECT_EQ(a.time.implicit_viscosity, b.time.implicit_viscosity);
   EXPECT_EQ(a.output.dir, b.output.dir);
   EXPECT_EQ(a.output.every, b.output.every);
   EXPECT_EQ(a.output.fields_every, b.output.fields_every);
@@ -138,6 +139,19 @@ TEST(Config, EmptyFileGivesTheDefaults) {
   expect_same(cfg, CaseConfig{});
   EXPECT_EQ(cfg.source, "<string>");
   EXPECT_TRUE(cfg.solids.empty());
+}
+
+// time.implicit_viscosity is read (and written back by the round trip); a build without MPI has
+// no transforms for it and refuses it by name.
+TEST(Config, ImplicitViscosity) {
+#ifdef EULERFSI_HAVE_MPI
+  EXPECT_TRUE(parse_case_string("[time]\nimplicit_viscosity = true\n").time.implicit_viscosity);
+  const CaseConfig c = parse_case_string("[time]\nimplicit_viscosity = true\n");
+  expect_same(parse_case_string(to_toml(c)), c);
+#else
+  expect_error("[time]\nimplicit_viscosity = true\n", {"time.implicit_viscosity", "EULERFSI_ENABLE_MPI"});
+#endif
+  EXPECT_FALSE(parse_case_string("").time.implicit_viscosity);
 }
 
 TEST(Config, EverySectionIsRead) {
@@ -325,6 +339,7 @@ TEST(ConfigErrors, WrongTypes) {
   expect_error("[domain]\ngeometry = \"tube\"\n", {"domain.geometry = \"tube\"", "\"pipe\", \"duct\", \"channel\""});
   expect_error("[domain]\ngeometry = \"dcut\"\n", {"did you mean \"duct\"?"});
   expect_error("[time]\nmax_steps = 1.5\n", {"time.max_steps = 1.5", "expected an integer"});
+  expect_error("[time]\nimplicit_viscosity = \"yes\"\n", {"time.implicit_viscosity", "expected true or false"});
   expect_error("[output]\ndir = 3\n", {"output.dir", "expected a string"});
   expect_error("[output]\nshape_times = [1, \"a\"]\n", {"output.shape_times[1] = \"a\""});
   expect_error("flow = 3\n", {"flow = 3", "must be a section [flow]"});
