@@ -20,19 +20,19 @@ RESOLUTIONS = {
     # D/240 make the pipe 3D long, although the text says 6D: set domain.length = [6, 1, 1] and
     # domain.cells = [1440, 240, 240] for the 6D reading (twice the cost).
     # The paper's own method (psi and B advected with WENO5) at the paper's CFL.
-    "paper": dict(cells=(720, 240, 240), every=100, fields_every=50000, checkpoint_every=5000, cfl=0.2,
+    "paper": dict(length=3.0, cells=(720, 240, 240), every=100, fields_every=50000, checkpoint_every=5000, cfl=0.2,
                   model="paper",
                   note="paper resolution: 240 cells across the pipe, 48 per particle diameter"),
-    # 12 cells per particle diameter (60 across the pipe): the finest a 2-core desk can take far.
-    # The paper's model smears under rotation at this resolution (a sphere in rigid rotation at 8
-    # cells per diameter reads D = 0.02 after one radian; docs/STATUS.md), the reference map does
-    # not (D 3.5e-7 after 10 rad) and agrees with itself between 8 and 12 cells per d to ~0.01 R
-    # over 20 time units (docs/REFERENCE_MAP.md): desk runs the reference map. CFL 0.4: the CFL
-    # study (same page) found r/R within 0.0025 and D within 0.0022 of CFL 0.2 at t = 5, below
-    # the 8-to-12-cell difference.
-    "desk": dict(cells=(180, 60, 60), every=20, fields_every=5000, checkpoint_every=1000, cfl=0.4,
+    # What issue 11's campaign runs on a 2-core desk: 8 cells per particle diameter (40 across the
+    # pipe) with the reference map. The paper's model smears under rotation at this resolution (a
+    # sphere in rigid rotation at 8 cells per diameter reads D = 0.02 after one radian), the
+    # reference map does not (D 3.5e-7 after 10 rad) and agrees with itself between 8 and 12 cells
+    # per d to ~0.01 R over 20 time units (docs/REFERENCE_MAP.md). CFL 0.4: r/R within 0.0025 and D
+    # within 0.0022 of CFL 0.2 at t = 5, below the 8-to-12-cell difference (same page). Lx = 2:
+    # within 0.0046 R of Lx = 3 to t = 20 (docs/REPRODUCTION.md).
+    "desk": dict(length=2.0, cells=(80, 40, 40), every=20, fields_every=4000, checkpoint_every=1000, cfl=0.4,
                  model="reference-map",
-                 note="desk resolution: 60 cells across the pipe, 12 per particle diameter, the reference map (docs/REFERENCE_MAP.md)"),
+                 note="desk resolution: 40 cells across the pipe, 8 per particle diameter, Lx = 2, the reference map (docs/REPRODUCTION.md)"),
 }
 
 
@@ -58,7 +58,7 @@ def case_text(res, re, we, r0, visc, rest, title):
 # Alghalibi, Rosti & Brandt (2019): Re = {re}, We = {we:g}, r0/R = {r0}, mu_s/mu_f = {visc:g};
 # {start}.
 [domain]
-length = [3.0, 1.0, 1.0]
+length = [{p['length']}, 1.0, 1.0]
 cells = [{nx}, {ny}, {nz}]
 geometry = "pipe"
 
