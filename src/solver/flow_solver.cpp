@@ -209,7 +209,7 @@ void FlowSolver::advance(double t, double dt, SolidCoupling* solids) {
     if (helmholtz_) {
       predict_implicit_viscosity(t_next, dt, s);
     } else {
-      predict(t_next, dt, s);
+      predict(dt, s);
     }
     bc_.fill_velocity(vel, t_next);
     // (iv) projection
@@ -230,7 +230,7 @@ const char* const kWallLabels[3] = {"eulerfsi::penalization::wall_u", "eulerfsi:
 }  // namespace
 
 // u* = u + dt (gamma rhs + zeta rhs_old), the pipe wall penalized implicitly (kernels/time_update.hpp).
-void FlowSolver::predict(double /*t_next*/, double dt, int s) {
+void FlowSolver::predict(double dt, int s) {
   const Box box = grid_.interior();
   auto& vel = state_.vel;
   const double penal = Rk3::alpha(s) * dt / cfg_.flow.penalization_eta;

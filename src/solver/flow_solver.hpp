@@ -67,7 +67,7 @@ class FlowSolver {
  private:
   void build_wall_masks();
   void project(double alpha_dt);
-  void predict(double t_next, double dt, int substep);
+  void predict(double dt, int substep);
   void predict_implicit_viscosity(double t_next, double dt, int substep);
   double correct_flow_rate();
 
