@@ -192,13 +192,23 @@ def varying_params(runs):
     return out or ["Re", "We"]
 
 
+def method_tag(run):
+    """The solid model and its resolution, e.g. 'reference-map, 8 cells/d' (every figure names them)."""
+    cfg = run.config
+    s = (cfg.get("solid") or [{}])[0]
+    cells = cfg.get("domain", {}).get("cells", [0, 0, 0])
+    length = cfg.get("domain", {}).get("length", [1, 1, 1])
+    per_d = s.get("diameter", 0) * cells[1] / length[1] if cells[1] else 0
+    return f"{s.get('model', 'paper')}, {per_d:.0f} cells/d"
+
+
 def run_label(run, keys, solid=None):
-    """Legend text such as 'Re=200, We=0.5'."""
+    """Legend text such as 'Re=200, We=0.5 (reference-map, 8 cells/d)'."""
     p = run.params(solid or 0)
     text = ", ".join(f"{PARAM_TEX[k]}={fmt(p.get(k))}" for k in keys)
     if not run.config:
-        text = run.name
-    return text + (f" (solid {solid})" if solid is not None else "")
+        return run.name + (f" (solid {solid})" if solid is not None else "")
+    return text + (f" (solid {solid})" if solid is not None else "") + f" ({method_tag(run)})"
 
 
 def label_keys(runs, label_by):
@@ -248,12 +258,8 @@ def plot_radial(paths, out=None, label_by=None):
 
 def model_label(run):
     """Legend text such as 'reference-map, 8 cells/d, We=4': the solid model and its resolution."""
-    cfg = run.config
-    s = (cfg.get("solid") or [{}])[0]
-    cells = cfg.get("domain", {}).get("cells", [0, 0, 0])
-    length = cfg.get("domain", {}).get("length", [1, 1, 1])
-    per_d = s.get("diameter", 0) * cells[1] / length[1] if cells[1] else 0
-    return f"{s.get('model', 'paper')}, {per_d:.0f} cells/d, $We$={fmt(s.get('We'))}"
+    s = (run.config.get("solid") or [{}])[0]
+    return f"{method_tag(run)}, $We$={fmt(s.get('We'))}"
 
 
 def plot_models(paths, out=None):
