@@ -127,10 +127,12 @@ std::string show(const toml::node& n) {
   return os.str();
 }
 
+// The node's TOML type with its article: "an integer", "a string".
 std::string type_name(const toml::node& n) {
   std::ostringstream os;
   os << n.type();
-  return os.str();
+  const std::string t = os.str();
+  return (std::string("aeiou").find(t.empty() ? 'x' : t[0]) != std::string::npos ? "an " : "a ") + t;
 }
 
 std::string lower(std::string s) {
@@ -270,7 +272,7 @@ void apply_override(toml::table& root, const Override& ov) {
     } else {
       if (!n) n = t->insert(seg.name, toml::table{}).first->second.as_table();
       t = n->as_table();
-      if (!t) bad_override(ov.text, where + " is a " + type_name(*n) + ", not a table");
+      if (!t) bad_override(ov.text, where + " is " + type_name(*n) + ", not a table");
     }
   }
   t->insert_or_assign(ov.path.back().name, *ov.holder.get("v"));
@@ -329,7 +331,7 @@ class Reader {
   const toml::table* section(const toml::table& root, const std::string& name) const {
     const toml::node* n = root.get(name);
     if (!n) return nullptr;
-    if (!n->is_table()) fail_value(name, *n, "must be a section [" + name + "], not a " + type_name(*n));
+    if (!n->is_table()) fail_value(name, *n, "must be a section [" + name + "], not " + type_name(*n));
     check_keys(*n->as_table(), name, name);
     return n->as_table();
   }
@@ -338,19 +340,19 @@ class Reader {
     double x = 0;
     if (const auto* f = n.as_floating_point()) x = f->get();
     else if (const auto* i = n.as_integer()) x = static_cast<double>(i->get());
-    else fail_value(key, n, "expected a number, got a " + type_name(n));
+    else fail_value(key, n, "expected a number, got " + type_name(n));
     if (!std::isfinite(x)) fail_value(key, n, "must be a finite number");
     return x;
   }
 
   long integer(const toml::node& n, const std::string& key) const {
     if (const auto* i = n.as_integer()) return static_cast<long>(i->get());
-    fail_value(key, n, "expected an integer, got a " + type_name(n));
+    fail_value(key, n, "expected an integer, got " + type_name(n));
   }
 
   std::vector<double> numbers(const toml::node& n, const std::string& key, std::size_t size, bool fixed) const {
     const auto* arr = n.as_array();
-    if (!arr) fail_value(key, n, "expected an array of numbers, got a " + type_name(n));
+    if (!arr) fail_value(key, n, "expected an array of numbers, got " + type_name(n));
     if (fixed && arr->size() != size)
       fail_value(key, n, "expected " + std::to_string(size) + " numbers, got " + std::to_string(arr->size()));
     std::vector<double> out;
@@ -379,7 +381,7 @@ class Reader {
     const toml::node* n = t ? t->get(k) : nullptr;
     if (!n) return false;
     const auto* b = n->as_boolean();
-    if (!b) fail_value(scope + "." + k, *n, "expected true or false, got a " + type_name(*n));
+    if (!b) fail_value(scope + "." + k, *n, "expected true or false, got " + type_name(*n));
     out = b->get();
     return true;
   }
@@ -530,7 +532,7 @@ void read_output(const Reader& r, const toml::table& root, OutputConfig& o) {
   const toml::table* t = r.section(root, "output");
   if (const toml::node* n = t ? t->get("dir") : nullptr) {
     const auto* s = n->as_string();
-    if (!s) r.fail_value("output.dir", *n, "expected a string (a directory path), got a " + type_name(*n));
+    if (!s) r.fail_value("output.dir", *n, "expected a string (a directory path), got " + type_name(*n));
     o.dir = s->get();
     if (o.dir.empty()) r.fail_value("output.dir", *n, "must not be empty");
   }
@@ -555,7 +557,7 @@ void read_solids(const Reader& r, const toml::table& root, const DomainConfig& d
   if (!n) return;
   const auto* arr = n->as_array();
   if (!arr || !arr->is_array_of_tables())
-    r.fail_value("solid", *n, "solids are written as [[solid]] sections (an array of tables), not a " + type_name(*n));
+    r.fail_value("solid", *n, "solids are written as [[solid]] sections (an array of tables), not " + type_name(*n));
   const double Lx = d.length[0], Ly = d.length[1], Lz = d.length[2];
   const std::string geo = toml_str(to_string(d.geometry));
   for (std::size_t i = 0; i < arr->size(); ++i) {
