@@ -52,14 +52,20 @@ inline void penalize_wall_layer(const Field3& u, const WallLayer& layer, const M
 //   (I - c L_h) u* = u^k + dt (gamma rhs^k + zeta rhs^(k-1)) + c L_h u^k,   c = alpha dt mu_f / 2,
 // rhs without the mu_f part. This writes the right-hand side into w (7-point L_h, ghosts of u
 // filled at the substep's start).
+// c L_h u at (i, j, k) with the per-direction weights cx = c / h_x^2, ... (7-point stencil).
+KOKKOS_FORCEINLINE_FUNCTION double scaled_laplacian(const Field3& u, double cx, double cy, double cz, int i, int j,
+                                                    int k) {
+  const double uc = u(i, j, k);
+  return cx * (u(i + 1, j, k) - 2.0 * uc + u(i - 1, j, k)) + cy * (u(i, j + 1, k) - 2.0 * uc + u(i, j - 1, k)) +
+         cz * (u(i, j, k + 1) - 2.0 * uc + u(i, j, k - 1));
+}
+
 inline void implicit_viscosity_rhs(const Field3& w, const Field3& u, const Field3& rhs_new, const Field3& rhs_old,
                                    double dt, double gamma, double zeta, double c, const double h[3], const Box& box) {
   const double a = dt * gamma, b = dt * zeta;
   const double cx = c / (h[0] * h[0]), cy = c / (h[1] * h[1]), cz = c / (h[2] * h[2]);
   for_each_cell("eulerfsi::rk3::implicit_viscosity_rhs", box, KOKKOS_LAMBDA(int i, int j, int k) {
-    const double uc = u(i, j, k);
-    w(i, j, k) = uc + a * rhs_new(i, j, k) + b * rhs_old(i, j, k) + cx * (u(i + 1, j, k) - 2.0 * uc + u(i - 1, j, k)) +
-                 cy * (u(i, j + 1, k) - 2.0 * uc + u(i, j - 1, k)) + cz * (u(i, j, k + 1) - 2.0 * uc + u(i, j, k - 1));
+    w(i, j, k) = u(i, j, k) + a * rhs_new(i, j, k) + b * rhs_old(i, j, k) + scaled_laplacian(u, cx, cy, cz, i, j, k);
   });
 }
 
@@ -89,9 +95,7 @@ inline void add_wall_velocity_term(const Field3& w, int dir, int n_interior, dou
 //   w += (u~ + pen u_t) / (1 + pen) - u~,   pen = alpha dt chi / eta,   u_t = u_wall
 KOKKOS_INLINE_FUNCTION double explicit_estimate(const Field3& w, const Field3& u, double cx, double cy, double cz,
                                                 int i, int j, int k) {
-  const double uc = u(i, j, k);
-  return w(i, j, k) + cx * (u(i + 1, j, k) - 2.0 * uc + u(i - 1, j, k)) + cy * (u(i, j + 1, k) - 2.0 * uc + u(i, j - 1, k)) +
-         cz * (u(i, j, k + 1) - 2.0 * uc + u(i, j, k - 1));
+  return w(i, j, k) + scaled_laplacian(u, cx, cy, cz, i, j, k);
 }
 
 inline void force_implicit_wall(const Field3& w, const Field3& u, const Mask2& chi, double penal_factor, double u_wall,

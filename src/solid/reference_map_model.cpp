@@ -162,10 +162,7 @@ void ReferenceMapModel::update_active_box() {
     active_ = Box{{interior.lo[0], interior.lo[1], interior.lo[2]}, {interior.lo[0], interior.lo[1], interior.lo[2]}};
     return;
   }
-  for (int d = 0; d < 3; ++d) {
-    active_.lo[d] = std::max(interior.lo[d], known.lo[d] - 2);
-    active_.hi[d] = std::min(interior.hi[d], known.hi[d] + 2);
-  }
+  active_ = known.grown(2, interior);
 }
 
 // Periodic directions and ranks by the halo exchange (q is periodic); walls by linear extrapolation.
