@@ -132,11 +132,12 @@ inline void rk3_vector_update(const Vector3& q, const Vector3& rhs, const Vector
   });
 }
 
-// The solid after a substep: level = 1 where the cell centre is inside the body (d < 0) and the
-// cell was known before (level in [1, reach]: the body moves less than a cell per step, and an
-// unknown cell's q is stale), else 0.
+// The solid after a substep: level = 1 where the cell centre lies deeper than `margin` inside the
+// body (d < -margin) and the cell was known before (level in [1, reach]: the body moves less than a
+// cell per step, and an unknown cell's q is stale), else 0. Cells of the outer layer (-margin <= d)
+// are extrapolated from the deeper ones like the fluid side (see kSolidMarginCells).
 inline void classify_solid(const Field3& level, const Vector3& q, const ReferenceShape& shape, const CellCentres& xc,
-                           double reach, bool initial, const double h[3], const Box& box) {
+                           double reach, double margin, bool initial, const double h[3], const Box& box) {
   const double i2h[3] = {0.5 / h[0], 0.5 / h[1], 0.5 / h[2]};
   const double i0 = i2h[0], i1 = i2h[1], i2 = i2h[2];
   const Vector3 m = q;
@@ -148,7 +149,7 @@ inline void classify_solid(const Field3& level, const Vector3& q, const Referenc
     }
     const double x[3] = {xc(0, i), xc(1, j), xc(2, k)};
     const double inv_2h[3] = {i0, i1, i2};
-    level(i, j, k) = current_distance(m, shape, x, inv_2h, i, j, k) < 0.0 ? kLevelSolid : 0.0;
+    level(i, j, k) = current_distance(m, shape, x, inv_2h, i, j, k) < -margin ? kLevelSolid : 0.0;
   });
 }
 
@@ -285,6 +286,26 @@ inline void solid_from_map(const Field3& psi, const Tensor6& b, const Vector3& q
       for (int n = 0; n < 3; ++n) v += F[ra[s]][n] * F[rc[s]][n];
       bb.c[s](i, j, k) = v;
     }
+  });
+}
+
+// psi alone at another half-width (cells along the normal), on the cells where solid_from_map
+// derives it; for the diagnostics' zero-width extrapolation of the shape moments.
+inline void psi_from_map(const Field3& psi, const Vector3& q, const Field3& level, const ReferenceShape& shape,
+                         const CellCentres& xc, double width, double max_level, const double h[3], const Box& box) {
+  const double i0 = 0.5 / h[0], i1 = 0.5 / h[1], i2 = 0.5 / h[2];
+  const Vector3 m = q;
+  for_each_cell("eulerfsi::refmap::psi_at_width", box, KOKKOS_LAMBDA(int i, int j, int k) {
+    const double l = level(i, j, k);
+    if (l < kLevelSolid || l > max_level) {
+      psi(i, j, k) = 0.0;
+      return;
+    }
+    const double inv_2h[3] = {i0, i1, i2};
+    const double x[3] = {xc(0, i), xc(1, j), xc(2, k)};
+    double hn = 0.0;
+    const double d = current_distance(m, shape, x, inv_2h, i, j, k, &hn);
+    psi(i, j, k) = smoothed_heaviside(-d, width * hn);
   });
 }
 

@@ -24,9 +24,10 @@ constexpr double kImplicitViscosityFields = 2.0;
 constexpr double kSnapshotFields = 4.0;
 // Every body: psi, B and B before the update (6 + 6) (src/solid/solid_body.hpp).
 constexpr double kBodyFields = 13.0;
-// The model's own: RK3 rhs and memory of psi and B (paper), or of q = xi - x and its level (map).
+// The model's own: RK3 rhs and memory of psi and B (paper), or of q = xi - x and its level and
+// the diagnostics' psi at a second edge width (map).
 constexpr double kPaperModelFields = 14.0;
-constexpr double kReferenceMapFields = 10.0;
+constexpr double kReferenceMapFields = 11.0;
 // Allocator and library overhead (FFTW plans, MPI buffers, the Kokkos runtime) on top.
 constexpr double kOverheadBytes = 64.0 * 1024 * 1024;
 

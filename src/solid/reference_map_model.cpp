@@ -23,6 +23,13 @@ constexpr double kMaxDerivedLevel = kBand;
 // A cell may turn solid only if it was within 2 cells of the body (level <= 3): the body moves
 // less than one cell per step (CFL < 1), and farther cells were advected with stale neighbours.
 constexpr double kSolidReach = 3.0;
+// The map is carried (transported) only on cells more than half a cell inside the surface; the
+// outer layer takes the least-squares extension of the deeper cells, as the fluid side does. Why:
+// labels carried in that layer drift by stencils that straddle the surface (O(h^2) per unit strain),
+// and the elastic stress, from central differences that the extension follows, does not restore
+// them: a stiff shear particle's (Ca = 0.0125, 8 cells per d) surface turned 0.087 rad per unit
+// strain away from the axes its B gave (0.012 with this margin; docs/REFERENCE_MAP.md).
+constexpr double kSolidMarginCells = 0.5;
 // Half-width of the smoothed Heaviside, in cells along the surface normal: psi goes from 0 to 1
 // over 3 cells.
 constexpr double kHalfWidthCells = 1.5;
@@ -72,7 +79,7 @@ void ReferenceMapModel::set_initial_condition(SolidBody& body) {
   Kokkos::deep_copy(body.psi, 0.0);
   shape_.shift = 0.0;
   const Box box = grid_.interior();
-  kernels::classify_solid(level_, q_, shape_, centres_, kSolidReach, true, grid_.h, box);
+  kernels::classify_solid(level_, q_, shape_, centres_, kSolidReach, solid_margin(), true, grid_.h, box);
   fill_level(grid_.interior());
   active_ = box;
   extrapolate(box);
@@ -85,6 +92,20 @@ void ReferenceMapModel::set_initial_condition(SolidBody& body) {
   update_active_box();
 }
 
+double ReferenceMapModel::edge_half_width_cells() const { return kHalfWidthCells; }
+
+Field3 ReferenceMapModel::psi_at_half_width(const SolidBody&, double width_cells) {
+  if (psi_other_width_.extent(0) == 0) psi_other_width_ = grid_.make_field("psi_other_width");
+  Kokkos::deep_copy(psi_other_width_, 0.0);
+  kernels::psi_from_map(psi_other_width_, q_, level_, shape_, centres_, width_cells, kMaxDerivedLevel, grid_.h, active_);
+  return psi_other_width_;
+}
+
+// The margin in length: along the finest spacing (the layer grids are coarse along the surface).
+double ReferenceMapModel::solid_margin() const {
+  return kSolidMarginCells * std::min(grid_.h[0], std::min(grid_.h[1], grid_.h[2]));
+}
+
 void ReferenceMapModel::advance_substep(SolidBody& body, const kernels::Velocity& vel, double dt, int substep) {
   const Box box = active_;
   // dq/dt = -u - u . grad q on the known cells (WENO5, RK3)
@@ -93,7 +114,7 @@ void ReferenceMapModel::advance_substep(SolidBody& body, const kernels::Velocity
   std::swap(rhs_, rhs_old_);
   fill_map_ghosts(box);
   // the body where it is now, then q outside it again from the body's own values
-  kernels::classify_solid(level_, q_, shape_, centres_, kSolidReach, false, grid_.h, box);
+  kernels::classify_solid(level_, q_, shape_, centres_, kSolidReach, solid_margin(), false, grid_.h, box);
   fill_level(box);
   extrapolate(box);
   // B before the substep, ghosts included (the elastic force reads them); beyond, both are I

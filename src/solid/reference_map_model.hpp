@@ -26,6 +26,8 @@ class ReferenceMapModel final : public SolidModel {
   void restore_scalars(const std::map<std::string, double>& s) override;
   void fill_ghosts(SolidBody& body) override;
   Box active_box() const override { return active_; }
+  double edge_half_width_cells() const override;
+  Field3 psi_at_half_width(const SolidBody& body, double width_cells) override;
 
   // Every kernel on the whole slab instead of the active box: the reference the box is tested
   // against (tests/mpi/test_active_box.cpp); the results agree to round-off.
@@ -44,6 +46,7 @@ class ReferenceMapModel final : public SolidModel {
   bool near_wall(const Box& changed, int d) const;
   void fill(const Field3& f, const Box& changed) const;
   void extrapolate(const Box& region);
+  double solid_margin() const;
   void derive_solid(SolidBody& body, const Box& region);
   void update_active_box();
   void correct_volume(SolidBody& body, const Box& region);
@@ -55,6 +58,7 @@ class ReferenceMapModel final : public SolidModel {
   kernels::CellCentres centres_;
   kernels::Vector3 q_, rhs_, rhs_old_;
   Field3 level_;
+  Field3 psi_other_width_;  // the diagnostics' second psi, allocated on first use
   // The owned cells within reach of the body: the bounding box of the known cells (ghosts
   // included, so a body about to cross into this rank's slab is seen) grown by two cells. Every
   // kernel runs on it; outside it q is not used, psi = 0 and B = I.

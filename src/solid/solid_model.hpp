@@ -42,6 +42,11 @@ class SolidModel {
   // next substep's update: the shared solid kernels (mixture viscosity, elastic force,
   // diagnostics) run on it only. Empty where the body is not on this rank.
   virtual Box active_box() const = 0;
+  // The half-width of psi's smoothed edge in cells, and psi again at another half-width, where the
+  // model derives psi from a sharp shape (the reference map): the diagnostics extrapolate the
+  // shape moments to zero width. 0 and an empty field where psi is transported (the paper model).
+  virtual double edge_half_width_cells() const { return 0.0; }
+  virtual Field3 psi_at_half_width(const SolidBody&, double /*width_cells*/) { return Field3(); }
 };
 
 std::shared_ptr<SolidModel> make_solid_model(const SolidConfig& solid, const CaseConfig& cfg, const Grid& grid,

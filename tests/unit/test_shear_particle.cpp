@@ -150,6 +150,8 @@ TEST(ShearParticle, DISABLED_DeformationBecomesSteady) {
 // Ca^3 / 48 ~ 3e-3, plus the 3 % confinement on the tilt 0.125: 4e-3, plus discretisation).
 // Steadiness: D at strain 4 within 2 % of D at strain 3 (the transient, exp(-3 / 0.25) = 6e-6, is
 // gone; the issue's strain 10 against 3 was measured with `eulerfsi run`, docs/REFERENCE_MAP.md).
+// Measured (session 6: the shape's moments extrapolated to zero edge width, the map carried from
+// half a cell inside the surface): D 0.1264 (+1.1 %), inclination 0.6688, D 0.1261 -> 0.1270.
 TEST(ShearParticle, ReferenceMapMatchesTheoryAndStaysSteady) {
   ASSERT_FALSE(case_file().empty()) << "EULERFSI_TEST_DATA is not set (CTest sets it to the tests/ directory)";
   const ShearResult r = run_shear({"solid[0].model = \"reference-map\"", "time.t_end = 4.0"}, 3.0);
@@ -165,15 +167,13 @@ TEST(ShearParticle, ReferenceMapMatchesTheoryAndStaysSteady) {
 // A stiff particle, Ca = 0.0125 (We = 0.1): theory D = 0.0156, inclination 0.770. The paper model
 // reads D 0.0175 at strain 1, rising, with the axis past pi/4 (docs/STATUS.md). Bounds from the
 // issue: D within 20 % (at 8 cells per diameter D = 0.0156 is a 1.2 % elongation, 0.05 cells of
-// the radius: the smoothed edge's sampling error is of that order), inclination within 0.05 rad.
-// tau = 2.5 Ca = 0.031 strain: strains [1, 1.5] are far past the transient.
-// KNOWN DEFECT, disabled until fixed (run with --gtest_also_run_disabled_tests, ~1 min): measured
-// (session 3, 32^3) D = 0.01236 (-20.9 %), steady (0.01241 -> 0.01240), but the inclination is
-// 0.847 rad, past pi/4, against 0.770: the same sign of error as the paper model's (0.86-0.94).
-// With the shape now carried exactly under rotation, the cause is not the psi transport; suspects:
-// the phase of the elastic response at G = 10 (wave speed 3.2, 2.5 h per elastic time) and the
-// Crank-Nicolson B in the stress. The Ca = 0.1 case above passes (inclination 0.6613 vs 0.6604).
-TEST(ShearParticle, DISABLED_ReferenceMapStiffParticle) {
+// the radius), inclination within 0.05 rad. tau = 2.5 Ca = 0.031 strain: strains [1, 1.5] are far
+// past the transient. Fails without either of two changes (session 6, docs/REFERENCE_MAP.md):
+// with the map carried up to the surface (no margin) the surface turned 0.087 rad per unit strain
+// away from the axes B gave (0.847 over the window; 12 cells per d: 0.034 per strain, 0.810), and
+// psi's moments with the psi >= 0.05 cut read an exact ellipsoid's D 19 % low at this size (0.0124).
+// Measured: D 0.0158 (+1 %), inclination 0.786.
+TEST(ShearParticle, ReferenceMapStiffParticle) {
   ASSERT_FALSE(case_file().empty()) << "EULERFSI_TEST_DATA is not set (CTest sets it to the tests/ directory)";
   const ShearResult r = run_shear({"solid[0].model = \"reference-map\"", "solid[0].We = 0.1"}, 1.0);
   report("reference map, Ca = 0.0125, strains [1, 1.5]", r);
