@@ -72,15 +72,22 @@ constexpr double kCore = 0.05;
 // the map's 1.5 (narrower edges sample the shape on the grid with growing noise).
 constexpr double kNarrowEdgeFraction = 2.0 / 3.0;
 
+// The cells a body's reductions run on: its model's active box (psi = 0 and B = I outside it, and
+// every integrand below is psi-weighted or reads psi within a cell of where psi > 0, well inside
+// that box), so the diagnostics cost what the body's size costs.
+Box body_box(const SolidBody& body, const Grid& grid) { return body.model ? body.model->active_box() : grid.interior(); }
+
 }  // namespace
 
 double ParticleTracker::mean_x_velocity(const SolidPhase& solids, const FlowState& flow, size_t body,
                                         double frame_velocity) const {
   double m[2];
-  kernels::body_x_momentum(solids.bodies().at(body).psi, flow.vel, grid_.interior(), m, kCore);
+  const SolidBody& b = solids.bodies().at(body);
+  const Box box = body_box(b, grid_);
+  kernels::body_x_momentum(b.psi, flow.vel, box, m, kCore);
   sum_all(comm_, m);
   if (m[0] <= 0.0) {  // no core left: the whole psi
-    kernels::body_x_momentum(solids.bodies().at(body).psi, flow.vel, grid_.interior(), m);
+    kernels::body_x_momentum(b.psi, flow.vel, box, m);
     sum_all(comm_, m);
   }
   return (m[0] > 0.0 ? m[1] / m[0] : 0.0) + frame_velocity;
@@ -95,7 +102,7 @@ double ParticleTracker::mean_x_velocity(const SolidPhase& solids, const FlowStat
 // psi has no diffused halo, and the cut's on/off edge adds grid-sampling noise.
 void ParticleTracker::sharp_shape_moments(const SolidBody& body, const kernels::Velocity& vel, const double ref[3],
                                           const double period[3], double out[10]) const {
-  const Box box = grid_.interior();
+  const Box box = body_box(body, grid_);
   const kernels::CellCentres xc{{grid_.centre(0, 0), grid_.centre(1, 0), grid_.centre(2, 0)},
                                 {grid_.h[0], grid_.h[1], grid_.h[2]}};
   const double w1 = body.model->edge_half_width_cells(), w2 = kNarrowEdgeFraction * w1;
@@ -116,7 +123,6 @@ void ParticleTracker::sharp_shape_moments(const SolidBody& body, const kernels::
 
 std::vector<ParticleState> ParticleTracker::measure(const SolidPhase& solids, const FlowState& flow,
                                                     const GridFrame& frame) {
-  const Box box = grid_.interior();
   const kernels::CellCentres xc{{grid_.centre(0, 0), grid_.centre(1, 0), grid_.centre(2, 0)},
                                 {grid_.h[0], grid_.h[1], grid_.h[2]}};
   const double lx = grid_.length[0];
@@ -124,6 +130,7 @@ std::vector<ParticleState> ParticleTracker::measure(const SolidPhase& solids, co
   std::vector<ParticleState> out;
   for (size_t n = 0; n < solids.bodies().size(); ++n) {
     const SolidBody& body = solids.bodies()[n];
+    const Box box = body_box(body, grid_);
     ParticleState s;
     double whole[2];
     kernels::body_x_momentum(body.psi, flow.vel, box, whole);

@@ -34,3 +34,8 @@ add_test(NAME plots_from_real_run
          COMMAND bash ${REG}/plot_real_run.sh $<TARGET_FILE:eulerfsi> ${REG}/cases/particle_pipe.toml
                  ${CMAKE_BINARY_DIR}/regression/plot_real_run)
 set_tests_properties(plots_from_real_run PROPERTIES ENVIRONMENT "${EULERFSI_TEST_ENV}")
+# ParaView opens our fields.xdmf and renders the particle in the pipe (tools/render_3d.sh)
+add_test(NAME render_3d_from_real_run
+         COMMAND bash ${REG}/render_3d.sh $<TARGET_FILE:eulerfsi> ${REG}/cases/particle_pipe_refmap.toml
+                 ${CMAKE_BINARY_DIR}/regression/render_3d)
+set_tests_properties(render_3d_from_real_run PROPERTIES ENVIRONMENT "${EULERFSI_TEST_ENV}" SKIP_RETURN_CODE 77 TIMEOUT 600)
