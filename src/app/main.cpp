@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "app/memory_estimate.hpp"
+#include "solid/migration_summary.hpp"
 #include "app/simulation.hpp"
 #include "config/case_config.hpp"
 #include "core/compat.hpp"
@@ -66,6 +67,10 @@ int run_cli(int argc, char** argv, const eulerfsi::Comm& comm) {
 
   app.add_subcommand("info", "version, Kokkos backend, MPI ranks, FFT library");
 
+  std::vector<std::string> run_dirs;
+  auto* summary = app.add_subcommand("summary", "write summary.json (t_rev, t_cen, T_osc) again from particle.csv");
+  summary->add_option("run_dirs", run_dirs, "run directories")->required();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -75,6 +80,20 @@ int run_cli(int argc, char** argv, const eulerfsi::Comm& comm) {
   if (app.got_subcommand("info")) {
     print_info(comm);
     return 0;
+  }
+  if (app.got_subcommand("summary")) {
+    int status = 0;
+    for (const auto& d : run_dirs) {
+      if (!comm.root()) continue;
+      try {
+        eulerfsi::write_summary_json(d + "/particle.csv", d + "/summary.json");
+        std::printf("%s/summary.json\n", d.c_str());
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        status = 1;
+      }
+    }
+    return status;
   }
   try {
     if (!out_dir.empty()) sets.push_back("output.dir=\"" + out_dir + "\"");
