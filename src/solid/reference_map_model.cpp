@@ -124,7 +124,8 @@ void ReferenceMapModel::advance_substep(SolidBody& body, const kernels::Velocity
   update_active_box();
 }
 
-// One Newton step on V(shift) = V0 with dV/dshift = the surface area; psi and B derived again.
+// One Newton step on V(shift) = V0 with dV/dshift = the surface area; psi derived again (B, from
+// grad q alone, does not depend on the shift).
 void ReferenceMapModel::correct_volume(SolidBody& body, const Box& region) {
   double volume = 0.0, area = 0.0;
   kernels::volume_and_area(body.psi, grid_.h, region, volume, area);
@@ -132,7 +133,8 @@ void ReferenceMapModel::correct_volume(SolidBody& body, const Box& region) {
   area = comm_.sum(area);
   if (area <= 0.0) return;
   shape_.shift += (volume0_ - volume) / area;
-  derive_solid(body, region);
+  kernels::psi_from_map(body.psi, q_, level_, shape_, centres_, kHalfWidthCells, kMaxDerivedLevel, grid_.h, region);
+  fill(body.psi, region);
 }
 
 // Extrapolation sweeps 1..kBand, each from the cells known before it; the ghosts between sweeps
