@@ -103,4 +103,19 @@ inline void mixture_viscosity_add(const Field3& mu, const Field3& psi, double dm
   });
 }
 
+// The neo-Hookean elastic energy per unit volume, out += psi G (tr B / det(B)^(1/3) - 3) / 2: the
+// isochoric form, zero for B = I and never negative (the arithmetic-geometric mean of B's
+// eigenvalues), also where the discrete B is not exactly volume-preserving (det B = 1 is exact
+// only in the continuum). The field snapshots' measure of how strained the solid is.
+inline void elastic_energy_add(const Field3& out, const Field3& psi, const Tensor6& b, double G, const Box& box) {
+  const Tensor6 t = b;
+  for_each_cell("eulerfsi::solid::elastic_energy", box, KOKKOS_LAMBDA(int i, int j, int k) {
+    const double xx = t.c[XX](i, j, k), yy = t.c[YY](i, j, k), zz = t.c[ZZ](i, j, k);
+    const double xy = t.c[XY](i, j, k), xz = t.c[XZ](i, j, k), yz = t.c[YZ](i, j, k);
+    const double det = xx * (yy * zz - yz * yz) - xy * (xy * zz - yz * xz) + xz * (xy * yz - yy * xz);
+    if (det <= 0.0) return;  // not a deformation (never for B = F F^T); leaves the cell at 0
+    out(i, j, k) += psi(i, j, k) * 0.5 * G * ((xx + yy + zz) * compat::pow(det, -1.0 / 3.0) - 3.0);
+  });
+}
+
 }  // namespace eulerfsi::kernels

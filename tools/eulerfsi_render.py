@@ -1,5 +1,6 @@
 """A 3-D picture of a run in the manner of Alghalibi, Rosti & Brandt (2019), Fig. 1: the particle's
-psi = 1/2 surface at several times in the (transparent) pipe, coloured by the speed |u|.
+psi = 1/2 surface at several times in the (transparent) pipe, coloured by the speed |u| or by the
+elastic energy density psi G (tr B det(B)^(-1/3) - 3) / 2 (`--color energy`, how strained it is).
 
 Runs inside ParaView's own Python, from the run's fields.xdmf (XDMF reader), so it is also the
 proof that ParaView opens our files:
@@ -27,6 +28,8 @@ def parse_args(argv):
     p.add_argument("--size", type=int, nargs=2, default=[2400, 500], help="image width and height in pixels")
     p.add_argument("--pipe-radius", type=float, default=0.5, help="radius of the drawn pipe (domain units)")
     p.add_argument("--spacing", type=float, default=2.5, help="distance along x between the snapshots")
+    p.add_argument("--color", choices=["speed", "energy"], default="speed",
+                   help="colour the surface by |u| or by the elastic energy density (runs since session 6)")
     return p.parse_args(argv)
 
 
@@ -62,7 +65,9 @@ def main(argv):
     if not os.path.isfile(xdmf):
         sys.exit(f"eulerfsi_render: {xdmf} not found (a run writes it when output.fields_every > 0)")
     reader = pv.XDMFReader(FileNames=[xdmf])
-    reader.CellArrayStatus = ["psi", "velocity"]
+    if args.color == "energy" and "elastic_energy" not in reader.CellArrayStatus.Available:
+        sys.exit("eulerfsi_render: this run's snapshots have no elastic_energy field (written since session 6)")
+    reader.CellArrayStatus = ["psi", "velocity"] + (["elastic_energy"] if args.color == "energy" else [])
     times = chosen_times(list(reader.TimestepValues), args.times)
     view = pv.CreateView("RenderView")
     pv.SetActiveView(view)
@@ -77,7 +82,8 @@ def main(argv):
     for t in times:
         frozen = pv.ForceTime(Input=reader, ForcedTime=t)
         points = pv.CellDatatoPointData(Input=frozen)
-        speed = pv.Calculator(Input=points, ResultArrayName="speed", Function="mag(velocity)")
+        speed = pv.Calculator(Input=points, ResultArrayName="speed",
+                              Function="mag(velocity)" if args.color == "speed" else "elastic_energy")
         surface = pv.Contour(Input=speed, ContourBy=["POINTS", "psi"], Isosurfaces=[0.5], ComputeScalars=1)
         surface.UpdatePipeline(t)
         info = surface.GetDataInformation()
@@ -119,7 +125,7 @@ def main(argv):
         text.Color = [0.0, 0.0, 0.0]
         text.FontSize = 16
     bar = pv.GetScalarBar(lut, view)
-    bar.Title = "|u| / U_b"
+    bar.Title = "|u| / U_b" if args.color == "speed" else "elastic energy / (rho U_b^2)"
     bar.ComponentTitle = ""
     bar.TitleColor = bar.LabelColor = [0.0, 0.0, 0.0]
     bar.Visibility = 1

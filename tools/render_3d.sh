@@ -12,4 +12,7 @@ render() {
   else xvfb-run -a -s "-screen 0 1280x1024x24" pvbatch "$here/eulerfsi_render.py" "$run" --out "$out" "$@"; fi
 }
 # a virtual display that has just started sometimes refuses pvbatch's first connection: try twice
-render "$@" 2> "$out.log" || { sleep 2; render "$@" 2> "$out.log"; }
+if ! render "$@" 2> "$out.log"; then
+  sleep 2
+  render "$@" 2> "$out.log" || { grep -v "^ *[0-9][0-9]* *0x" "$out.log" | sed 's/\x1b\[[0-9;]*m//g' | tail -5 >&2; exit 1; }
+fi

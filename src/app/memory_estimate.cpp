@@ -20,8 +20,8 @@ constexpr double kPoissonFieldsFftDct = 4.0;
 // time.implicit_viscosity: its right-hand side and the three transforms' shared buffer (measured:
 // +36.6 - 32.4 MiB on a 96 x 48 x 48 pipe, 1.8 of its 2.4 MiB fields; src/poisson/helmholtz_solver.cpp).
 constexpr double kImplicitViscosityFields = 2.0;
-// Field snapshots: total psi and the three centred velocity components.
-constexpr double kSnapshotFields = 4.0;
+// Field snapshots: total psi, the elastic energy density and the three centred velocity components.
+constexpr double kSnapshotFields = 5.0;
 // Every body: psi, B and B before the update (6 + 6) (src/solid/solid_body.hpp).
 constexpr double kBodyFields = 13.0;
 // The model's own: RK3 rhs and memory of psi and B (paper), or of q = xi - x and its level and

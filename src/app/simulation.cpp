@@ -280,7 +280,12 @@ class Simulation {
       out.push_back({names[c], centred_[c]});
     }
     out.push_back({"p", flow_.state().p});
-    if (!solids_.empty()) out.push_back({"psi", total_psi()});
+    if (!solids_.empty()) {
+      out.push_back({"psi", total_psi()});
+      if (energy_.extent(0) == 0) energy_ = grid_.make_field("elastic_energy");
+      solids_.elastic_energy_density(energy_);
+      out.push_back({"elastic_energy", energy_});
+    }
     fields_.write(step_, t_, out, true, flow_.frame_offset());
   }
 
@@ -366,7 +371,7 @@ class Simulation {
   FieldWriter fields_;
   CsvWriter flow_csv_, particle_csv_, shape_index_;
   FlowDiagnostics last_;
-  Field3 psi_total_, centred_[3];
+  Field3 psi_total_, centred_[3], energy_;  // field snapshots
   size_t next_shape_ = 0;
   double dt_reference_ = 0.0;  // the first stable step of this session
   double t_ = 0.0;

@@ -49,6 +49,12 @@ void SolidPhase::total_volume_fraction(const Field3& out) const {
   for (const auto& body : bodies_) kernels::mixture_viscosity_add(out, body.psi, 1.0, grid_.all());
 }
 
+void SolidPhase::elastic_energy_density(const Field3& out) const {
+  Kokkos::deep_copy(out, 0.0);
+  for (const auto& body : bodies_)
+    kernels::elastic_energy_add(out, body.psi, body.b, body.G, body.model->active_box());
+}
+
 void SolidPhase::advance_substep(const kernels::Velocity& vel, double dt, int substep) {
   for (auto& body : bodies_) body.model->advance_substep(body, vel, dt, substep);
 }

@@ -33,6 +33,8 @@ class SolidPhase final : public SolidCoupling {
   Box active_box() const;
   // Sum of every body's psi (for output), into `out`.
   void total_volume_fraction(const Field3& out) const;
+  // sum over bodies of psi G (tr B - 3) / 2, the elastic energy per unit volume
+  void elastic_energy_density(const Field3& out) const;
 
   // SolidCoupling: what the momentum equation needs
   void advance_substep(const kernels::Velocity& vel, double dt, int substep) override;

@@ -251,6 +251,26 @@ TEST(SolidTransport, DISABLED_RotatingSphereErrorAtThePapersResolution) {
   for (std::size_t a = 1; a < by_angle.size(); ++a) EXPECT_GT(by_angle[a], by_angle[a - 1]);
 }
 
+// The elastic energy density of the field snapshots, psi G (tr B det(B)^(-1/3) - 3) / 2, on three
+// uniform B: simple shear F = [[1, g, 0], [0, 1, 0], [0, 0, 1]] gives tr B = 3 + g^2, det B = 1, so
+// G g^2 / 2 psi; B = I and a pure dilation B = 4 I (not isochoric) give 0. Round-off: 1e-14.
+TEST(SolidFields, ElasticEnergyDensity) {
+  const Mesh m(4, 4, 4, 1.0, 1.0, 1.0);
+  Field3 psi = m.field("psi"), out = m.field("energy");
+  Kokkos::deep_copy(psi, 0.5);
+  const double G = 3.0, g = 0.4;
+  const double shear[6] = {1.0 + g * g, 1.0, 1.0, g, 0.0, 0.0}, ident[6] = {1, 1, 1, 0, 0, 0}, dil[6] = {4, 4, 4, 0, 0, 0};
+  const double expect[3] = {0.5 * G * g * g * 0.5, 0.0, 0.0};
+  const double* cases[3] = {shear, ident, dil};
+  for (int c = 0; c < 3; ++c) {
+    Tensor6 b = m.tensor("b");
+    for (int q = 0; q < 6; ++q) Kokkos::deep_copy(b.c[q], cases[c][q]);
+    Kokkos::deep_copy(out, 0.0);
+    kernels::elastic_energy_add(out, psi, b, G, m.interior());
+    EXPECT_LT(max_abs_minus(out, expect[c], m.interior()), 1e-14) << "case " << c;
+  }
+}
+
 // B = I advected by a uniform velocity: the stretching is zero and WENO reproduces a constant,
 // so B stays I up to round-off (each substep adds O(1e-16 / h) * dt); 20 steps: < 1e-12.
 TEST(SolidTransport, IdentityStaysIdentityUnderTranslation) {
