@@ -60,26 +60,65 @@ std::vector<std::string> differing_physical_keys(const CaseConfig& before, const
   return keys;
 }
 
-void truncate_series_after(const std::string& csv_path, long step) {
+namespace {
+
+std::vector<std::string> split_commas(const std::string& line) {
+  std::vector<std::string> out;
+  std::string cell;
+  std::stringstream ss(line);
+  while (std::getline(ss, cell, ',')) out.push_back(cell);
+  if (!line.empty() && line.back() == ',') out.push_back("");
+  return out;
+}
+
+}  // namespace
+
+bool truncate_series_after(const std::string& csv_path, long step, const std::vector<std::string>& columns) {
   std::ifstream in(csv_path);
-  if (!in) return;
-  std::string header, line, kept;
+  if (!in) return false;
+  std::string header, line;
   std::getline(in, header);
+  std::vector<std::string> kept;
   while (std::getline(in, line)) {
     if (line.empty()) continue;
     const long s = std::strtol(line.c_str(), nullptr, 10);
     // a row torn by a crash has fewer fields than the header: dropped with the rest
     const auto fields = std::count(line.begin(), line.end(), ',');
-    if (s <= step && fields == std::count(header.begin(), header.end(), ',')) kept += line + "\n";
+    if (s <= step && fields == std::count(header.begin(), header.end(), ',')) kept.push_back(line);
   }
   in.close();
+  std::string new_header = header;
+  const bool relabel = !columns.empty() && header != [&columns] {
+    std::string h;
+    for (size_t c = 0; c < columns.size(); ++c) h += (c ? "," : "") + columns[c];
+    return h;
+  }();
+  if (relabel) {
+    // written by another version with other columns: the rows again under this version's, by name
+    const std::vector<std::string> old_cols = split_commas(header);
+    std::vector<int> from(columns.size(), -1);
+    for (size_t c = 0; c < columns.size(); ++c)
+      for (size_t o = 0; o < old_cols.size(); ++o)
+        if (old_cols[o] == columns[c]) from[c] = int(o);
+    new_header.clear();
+    for (size_t c = 0; c < columns.size(); ++c) new_header += (c ? "," : "") + columns[c];
+    for (auto& row : kept) {
+      const std::vector<std::string> v = split_commas(row);
+      std::string r;
+      for (size_t c = 0; c < columns.size(); ++c) r += (c ? "," : "") + (from[c] >= 0 ? v[size_t(from[c])] : "nan");
+      row = r;
+    }
+    fs::copy_file(csv_path, csv_path + ".before-restart", fs::copy_options::overwrite_existing);
+  }
   const std::string tmp = csv_path + ".tmp";
   {
     std::ofstream out(tmp);
-    out << header << "\n" << kept;
+    out << new_header << "\n";
+    for (const auto& row : kept) out << row << "\n";
     if (!out) throw std::runtime_error("cannot rewrite '" + csv_path + "' for the restart");
   }
   fs::rename(tmp, csv_path);
+  return relabel;
 }
 
 std::vector<Snapshot> field_history_until(const std::string& run_dir, long step) {

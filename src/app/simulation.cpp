@@ -206,7 +206,13 @@ class Simulation {
     solids_.restore({meta.scalars.begin(), meta.scalars.end()});
     // the series continue from the checkpoint's step: later rows belong to the lost future
     if (comm_.root()) {
-      for (const char* name : {"/flow.csv", "/particle.csv", "/shapes/index.csv"}) truncate_series_after(dir() + name, step_);
+      const std::vector<std::string> none, particle = solids_.empty() ? none : particle_columns();
+      const std::pair<const char*, const std::vector<std::string>*> series[] = {
+          {"/flow.csv", &kFlowColumns}, {"/particle.csv", &particle}, {"/shapes/index.csv", &none}};
+      for (const auto& [name, cols] : series)
+        if (truncate_series_after(dir() + name, step_, *cols) && !opt_.quiet)
+          std::printf("%s%s was written with other columns (another eulerfsi version): its rows are rewritten "
+                      "under this version's, the original kept as %s.before-restart\n", dir().c_str(), name, name + 1);
       fields_.set_history(field_history_until(dir(), step_));
     }
     if (comm_.root() && !opt_.quiet) std::printf("restarted from %s at step %ld, t = %.6g\n", path.c_str(), step_, t_);

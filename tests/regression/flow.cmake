@@ -39,3 +39,8 @@ add_test(NAME render_3d_from_real_run
          COMMAND bash ${REG}/render_3d.sh $<TARGET_FILE:eulerfsi> ${REG}/cases/particle_pipe_refmap.toml
                  ${CMAKE_BINARY_DIR}/regression/render_3d)
 set_tests_properties(render_3d_from_real_run PROPERTIES ENVIRONMENT "${EULERFSI_TEST_ENV}" SKIP_RETURN_CODE 77 TIMEOUT 600)
+# a restart by a version with other particle.csv columns keeps one header for every row
+add_test(NAME restart_with_other_columns
+         COMMAND bash ${REG}/restart_columns.sh $<TARGET_FILE:eulerfsi> ${REG}/cases/particle_pipe.toml
+                 ${CMAKE_BINARY_DIR}/regression/restart_columns)
+set_tests_properties(restart_with_other_columns PROPERTIES ENVIRONMENT "${EULERFSI_TEST_ENV}")
