@@ -297,12 +297,19 @@ inline BodyFirstMoments body_first_moments(const Field3& psi, const Velocity& ve
 }
 
 // The body's mean x-velocity sum psi u_c / sum psi as {sum psi, sum psi u_c} (times dV omitted).
+// sum psi over the cells with psi >= psi_min (times dV omitted).
+inline double body_volume(const Field3& psi, const Box& box, double psi_min = 0.0) {
+  const CellCentres none{{0, 0, 0}, {1, 1, 1}};
+  const Field3 unused;  // the volume term reads no velocity
+  detail::FirstMomentTerm volume{psi, unused, unused, unused, none, 0.0, BodyFirstMoments::Volume, psi_min};
+  return detail::sum_over("eulerfsi::diag::body_volume", box, volume);
+}
+
 inline void body_x_momentum(const Field3& psi, const Velocity& vel, const Box& box, double out[2],
                             double psi_min = 0.0) {
   const CellCentres none{{0, 0, 0}, {1, 1, 1}};
-  detail::FirstMomentTerm volume{psi, vel.c[0], vel.c[1], vel.c[2], none, 0.0, BodyFirstMoments::Volume, psi_min};
   detail::FirstMomentTerm momentum{psi, vel.c[0], vel.c[1], vel.c[2], none, 0.0, BodyFirstMoments::U, psi_min};
-  out[0] = detail::sum_over("eulerfsi::diag::body_volume", box, volume);
+  out[0] = body_volume(psi, box, psi_min);
   out[1] = detail::sum_over("eulerfsi::diag::body_x_momentum", box, momentum);
 }
 

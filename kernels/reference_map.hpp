@@ -242,6 +242,19 @@ inline void extrapolation_sweep(const Vector3& q, const Field3& level, int sweep
 // psi and B from the map on the known cells whose central differences read known cells
 // (1 <= level <= max_level); psi = 0 and B = I elsewhere.
 //   psi = H_eps(-d),  eps = width x (grid spacing along the normal),  B = F F^T,  F = (I + grad q)^-1
+// psi at a cell: H_eps(-d) with eps = width x (spacing along the normal), on the known cells whose
+// central differences read known cells (1 <= level <= max_level); -1 elsewhere (psi = 0 and B = I there).
+KOKKOS_INLINE_FUNCTION double psi_of_map(const Vector3& q, const Field3& level, const ReferenceShape& shape,
+                                         const CellCentres& xc, const double inv_2h[3], double width, double max_level,
+                                         int i, int j, int k) {
+  const double l = level(i, j, k);
+  if (l < kLevelSolid || l > max_level) return -1.0;
+  const double x[3] = {xc(0, i), xc(1, j), xc(2, k)};
+  double hn = 0.0;
+  const double d = current_distance(q, shape, x, inv_2h, i, j, k, &hn);
+  return smoothed_heaviside(-d, width * hn);
+}
+
 inline void solid_from_map(const Field3& psi, const Tensor6& b, const Vector3& q, const Field3& level,
                            const ReferenceShape& shape, const CellCentres& xc, double width, double max_level,
                            const double h[3], const Box& box) {
@@ -249,17 +262,14 @@ inline void solid_from_map(const Field3& psi, const Tensor6& b, const Vector3& q
   const Vector3 m = q;
   const Tensor6 bb = b;
   for_each_cell("eulerfsi::refmap::psi_and_b", box, KOKKOS_LAMBDA(int i, int j, int k) {
-    const double l = level(i, j, k);
-    if (l < kLevelSolid || l > max_level) {
+    const double inv_2h[3] = {i0, i1, i2};
+    const double p = psi_of_map(m, level, shape, xc, inv_2h, width, max_level, i, j, k);
+    if (p < 0.0) {
       psi(i, j, k) = 0.0;
       for (int c = 0; c < kTensorComponents; ++c) bb.c[c](i, j, k) = c < 3 ? 1.0 : 0.0;
       return;
     }
-    const double inv_2h[3] = {i0, i1, i2};
-    const double x[3] = {xc(0, i), xc(1, j), xc(2, k)};
-    double hn = 0.0;
-    const double d = current_distance(m, shape, x, inv_2h, i, j, k, &hn);
-    psi(i, j, k) = smoothed_heaviside(-d, width * hn);
+    psi(i, j, k) = p;
     // F = A^-1 with A = grad xi = I + grad q, by cofactors
     double G[3][3];
     displacement_gradient(m, inv_2h, i, j, k, G);
@@ -289,23 +299,15 @@ inline void solid_from_map(const Field3& psi, const Tensor6& b, const Vector3& q
   });
 }
 
-// psi alone at another half-width (cells along the normal), on the cells where solid_from_map
-// derives it; for the diagnostics' zero-width extrapolation of the shape moments.
+// psi alone (solid_from_map's, at any half-width): the volume correction, which moves only the
+// level, and the diagnostics' zero-width extrapolation of the shape moments.
 inline void psi_from_map(const Field3& psi, const Vector3& q, const Field3& level, const ReferenceShape& shape,
                          const CellCentres& xc, double width, double max_level, const double h[3], const Box& box) {
   const double i0 = 0.5 / h[0], i1 = 0.5 / h[1], i2 = 0.5 / h[2];
   const Vector3 m = q;
   for_each_cell("eulerfsi::refmap::psi_at_width", box, KOKKOS_LAMBDA(int i, int j, int k) {
-    const double l = level(i, j, k);
-    if (l < kLevelSolid || l > max_level) {
-      psi(i, j, k) = 0.0;
-      return;
-    }
     const double inv_2h[3] = {i0, i1, i2};
-    const double x[3] = {xc(0, i), xc(1, j), xc(2, k)};
-    double hn = 0.0;
-    const double d = current_distance(m, shape, x, inv_2h, i, j, k, &hn);
-    psi(i, j, k) = smoothed_heaviside(-d, width * hn);
+    psi(i, j, k) = compat::fmax(0.0, psi_of_map(m, level, shape, xc, inv_2h, width, max_level, i, j, k));
   });
 }
 

@@ -12,6 +12,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "io/csv_writer.hpp"
+
 namespace eulerfsi {
 
 namespace fs = std::filesystem;
@@ -60,19 +62,6 @@ std::vector<std::string> differing_physical_keys(const CaseConfig& before, const
   return keys;
 }
 
-namespace {
-
-std::vector<std::string> split_commas(const std::string& line) {
-  std::vector<std::string> out;
-  std::string cell;
-  std::stringstream ss(line);
-  while (std::getline(ss, cell, ',')) out.push_back(cell);
-  if (!line.empty() && line.back() == ',') out.push_back("");
-  return out;
-}
-
-}  // namespace
-
 bool truncate_series_after(const std::string& csv_path, long step, const std::vector<std::string>& columns) {
   std::ifstream in(csv_path);
   if (!in) return false;
@@ -88,22 +77,17 @@ bool truncate_series_after(const std::string& csv_path, long step, const std::ve
   }
   in.close();
   std::string new_header = header;
-  const bool relabel = !columns.empty() && header != [&columns] {
-    std::string h;
-    for (size_t c = 0; c < columns.size(); ++c) h += (c ? "," : "") + columns[c];
-    return h;
-  }();
+  const bool relabel = !columns.empty() && header != csv_header(columns);
   if (relabel) {
     // written by another version with other columns: the rows again under this version's, by name
-    const std::vector<std::string> old_cols = split_commas(header);
+    const std::vector<std::string> old_cols = split_csv_line(header);
     std::vector<int> from(columns.size(), -1);
     for (size_t c = 0; c < columns.size(); ++c)
       for (size_t o = 0; o < old_cols.size(); ++o)
         if (old_cols[o] == columns[c]) from[c] = int(o);
-    new_header.clear();
-    for (size_t c = 0; c < columns.size(); ++c) new_header += (c ? "," : "") + columns[c];
+    new_header = csv_header(columns);
     for (auto& row : kept) {
-      const std::vector<std::string> v = split_commas(row);
+      const std::vector<std::string> v = split_csv_line(row);
       std::string r;
       for (size_t c = 0; c < columns.size(); ++c) r += (c ? "," : "") + (from[c] >= 0 ? v[size_t(from[c])] : "nan");
       row = r;

@@ -13,15 +13,28 @@ std::string format_number(double v) {
   return buf;
 }
 
+std::string csv_header(const std::vector<std::string>& columns) {
+  std::string header;
+  for (size_t c = 0; c < columns.size(); ++c) header += (c ? "," : "") + columns[c];
+  return header;
+}
+
+std::vector<std::string> split_csv_line(const std::string& line) {
+  std::vector<std::string> out;
+  size_t start = 0;
+  for (size_t comma; (comma = line.find(',', start)) != std::string::npos; start = comma + 1)
+    out.push_back(line.substr(start, comma - start));
+  out.push_back(line.substr(start));
+  return out;
+}
+
 CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& columns, bool active, bool append)
     : path_(path), ncols_(columns.size()) {
   if (!active) return;
   file_ = std::fopen(path.c_str(), append ? "a" : "w");
   if (!file_) throw std::runtime_error("cannot write '" + path + "': check that the output directory is writable");
   if (!append) {
-    std::string header;
-    for (size_t c = 0; c < columns.size(); ++c) header += (c ? "," : "") + columns[c];
-    std::fprintf(file_, "%s\n", header.c_str());
+    std::fprintf(file_, "%s\n", csv_header(columns).c_str());
     std::fflush(file_);
   }
 }

@@ -30,4 +30,9 @@ class CsvWriter {
 // Formats a double the way every CSV of ours does: 17 significant digits, so rows round-trip.
 std::string format_number(double v);
 
+// The header line of `columns` (comma-joined), and a line split at its commas (no quoting: our
+// CSVs hold names and numbers only).
+std::string csv_header(const std::vector<std::string>& columns);
+std::vector<std::string> split_csv_line(const std::string& line);
+
 }  // namespace eulerfsi

@@ -100,8 +100,8 @@ double ParticleTracker::mean_x_velocity(const SolidPhase& solids, const FlowStat
 // psi >= 0.05 cut, and D = 0.125 reads 0.117. Two widths (psi's own and 2/3 of it) extrapolated
 // to zero width read 0.0160-0.0164 and 0.1248-0.1254 (docs/REFERENCE_MAP.md). No cut: the map's
 // psi has no diffused halo, and the cut's on/off edge adds grid-sampling noise.
-void ParticleTracker::sharp_shape_moments(const SolidBody& body, const kernels::Velocity& vel, const double ref[3],
-                                          const double period[3], double out[10]) const {
+void ParticleTracker::sharp_shape_moments(const SolidBody& body, const double ref[3], const double period[3],
+                                          double out[10]) const {
   const Box box = body_box(body, grid_);
   const kernels::CellCentres xc{{grid_.centre(0, 0), grid_.centre(1, 0), grid_.centre(2, 0)},
                                 {grid_.h[0], grid_.h[1], grid_.h[2]}};
@@ -109,10 +109,8 @@ void ParticleTracker::sharp_shape_moments(const SolidBody& body, const kernels::
   const Field3 fields[2] = {body.psi, body.model->psi_at_half_width(body, w2)};
   double mom[2][10];
   for (int f = 0; f < 2; ++f) {
-    double vx[2];
-    kernels::body_x_momentum(fields[f], vel, box, vx);
     auto second = kernels::body_second_moments(fields[f], xc, ref, period, box, 0.0);
-    mom[f][0] = vx[0] * xc.h[0] * xc.h[1] * xc.h[2];
+    mom[f][0] = kernels::body_volume(fields[f], box) * xc.h[0] * xc.h[1] * xc.h[2];
     for (int a = 0; a < 3; ++a) mom[f][1 + a] = second.m1[a];
     for (int a = 0; a < 6; ++a) mom[f][4 + a] = second.m2[a];
     sum_all(comm_, mom[f]);
@@ -186,7 +184,7 @@ std::vector<ParticleState> ParticleTracker::measure(const SolidPhase& solids, co
     double cov[3][3];
     double shape_m[10] = {core_volume};  // volume, first and second moments that define the shape
     for (int a = 0; a < 9; ++a) shape_m[1 + a] = m[a];
-    if (body.model && body.model->edge_half_width_cells() > 0.0) sharp_shape_moments(body, flow.vel, ref, period, shape_m);
+    if (body.model && body.model->edge_half_width_cells() > 0.0) sharp_shape_moments(body, ref, period, shape_m);
     for (int q = 0; q < 6; ++q) {
       const double v = shape_m[0];
       const double val = shape_m[4 + q] / v - (shape_m[1 + ra[q]] / v) * (shape_m[1 + rb[q]] / v);

@@ -53,8 +53,7 @@ class ParticleTracker {
 
  private:
   // Volume, first and second moments about `ref` of the body's sharp shape (edge width -> 0).
-  void sharp_shape_moments(const SolidBody& body, const kernels::Velocity& vel, const double ref[3],
-                           const double period[3], double out[10]) const;
+  void sharp_shape_moments(const SolidBody& body, const double ref[3], const double period[3], double out[10]) const;
 
   CaseConfig cfg_;
   Grid grid_;

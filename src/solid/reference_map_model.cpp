@@ -96,7 +96,6 @@ double ReferenceMapModel::edge_half_width_cells() const { return kHalfWidthCells
 
 Field3 ReferenceMapModel::psi_at_half_width(const SolidBody&, double width_cells) {
   if (psi_other_width_.extent(0) == 0) psi_other_width_ = grid_.make_field("psi_other_width");
-  Kokkos::deep_copy(psi_other_width_, 0.0);
   kernels::psi_from_map(psi_other_width_, q_, level_, shape_, centres_, width_cells, kMaxDerivedLevel, grid_.h, active_);
   return psi_other_width_;
 }

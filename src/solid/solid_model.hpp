@@ -44,7 +44,8 @@ class SolidModel {
   virtual Box active_box() const = 0;
   // The half-width of psi's smoothed edge in cells, and psi again at another half-width, where the
   // model derives psi from a sharp shape (the reference map): the diagnostics extrapolate the
-  // shape moments to zero width. 0 and an empty field where psi is transported (the paper model).
+  // shape moments to zero width; valid on active_box() (outside it the field is stale). 0 and an
+  // empty field where psi is transported (the paper model).
   virtual double edge_half_width_cells() const { return 0.0; }
   virtual Field3 psi_at_half_width(const SolidBody&, double /*width_cells*/) { return Field3(); }
 };
