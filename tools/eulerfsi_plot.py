@@ -236,18 +236,30 @@ def default_out(runs, name, out):
 # ----------------------------------------------------------------------------- radial
 
 
-def plot_radial(paths, out=None, label_by=None):
+def given_labels(runs, labels):
+    """The legend labels the user gave, one per run (None: make them from the runs)."""
+    if labels is None:
+        return None
+    if len(labels) != len(runs):
+        raise PlotError(f"--labels gives {len(labels)} label(s) for {len(runs)} run(s): give one per run, in order")
+    return labels
+
+
+def plot_radial(paths, out=None, label_by=None, labels=None):
     """r/R against t U_b/D for several runs (paper figs 2, 3, 7a, 12, 14)."""
     runs = load_runs(paths)
     keys = label_keys(runs, label_by)
+    names = given_labels(runs, labels)
     fig, ax = plt.subplots(figsize=(6.4, 4.0))
-    for run in runs:
+    for n, run in enumerate(runs):
         solids = run.solids()
         for s in solids:
             d = run.particle(s)
             need(d, ["t", "r_over_R"], f"{run.name}/particle.csv")
-            ax.plot(d["t"] * run.time_scale(), d["r_over_R"],
-                    label=run_label(run, keys, s if len(solids) > 1 else None))
+            label = run_label(run, keys, s if len(solids) > 1 else None)
+            if names:
+                label = names[n] + (f" (solid {s})" if len(solids) > 1 else "")
+            ax.plot(d["t"] * run.time_scale(), d["r_over_R"], label=label)
     ax.set_xlabel(T_LABEL)
     ax.set_ylabel(R_LABEL)
     ax.set_ylim(bottom=0)
@@ -262,17 +274,18 @@ def model_label(run):
     return f"{method_tag(run)}, $We$={fmt(s.get('We'))}"
 
 
-def plot_models(paths, out=None):
+def plot_models(paths, out=None, labels=None):
     """r/R and the Taylor deformation D against t U_b/D, one line per run labelled by solid model and
     resolution (the solid-model comparison of docs/REFERENCE_MAP.md)."""
     runs = load_runs(paths)
+    names = given_labels(runs, labels)
     fig, (ax_r, ax_d) = plt.subplots(1, 2, figsize=(11, 4.0))
-    for run in runs:
+    for n, run in enumerate(runs):
         d = run.particle(0)
         need(d, ["t", "r_over_R", "taylor_D"], f"{run.name}/particle.csv")
         t = d["t"] * run.time_scale()
         style = "-" if "reference" in model_label(run) else "--"
-        line, = ax_r.plot(t, d["r_over_R"], style, label=model_label(run))
+        line, = ax_r.plot(t, d["r_over_R"], style, label=names[n] if names else model_label(run))
         ax_d.plot(t, d["taylor_D"], style, color=line.get_color())
     ax_r.set_xlabel(T_LABEL)
     ax_r.set_ylabel(R_LABEL)
@@ -583,17 +596,20 @@ def build_parser():
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = p.add_subparsers(dest="cmd", required=True, metavar="COMMAND")
 
-    def add(name, help_text, multi=True, label=False, out_help="output PNG"):
+    def add(name, help_text, multi=True, label=False, out_help="output PNG", labels=False):
         s = sub.add_parser(name, help=help_text, description=help_text)
         s.add_argument("runs", nargs="+" if multi else 1, metavar="RUN", help="run directory")
         s.add_argument("--out", help=out_help)
         if label:
             s.add_argument("--label-by", choices=["We", "Re", "mu"],
                            help="legend shows only this parameter (default: those that differ between runs)")
+        if labels:
+            s.add_argument("--labels", nargs="+", metavar="TEXT",
+                           help="legend labels, one per run in the order given (e.g. to tell code versions apart)")
         return s
 
-    add("radial", "r/R against t U_b/D (figs 2, 3, 7a, 12, appendix)", label=True).set_defaults(
-        func=lambda a: plot_radial(a.runs, a.out, a.label_by))
+    add("radial", "r/R against t U_b/D (figs 2, 3, 7a, 12, appendix)", label=True, labels=True).set_defaults(
+        func=lambda a: plot_radial(a.runs, a.out, a.label_by, a.labels))
     add("tcen", "t_cen against Re and We from summary.json (fig 4)").set_defaults(
         func=lambda a: plot_tcen(a.runs, a.out))
     add("trev-tosc", "t_rev and T_osc against We, lines per Re (figs 5, 11)").set_defaults(
@@ -606,8 +622,8 @@ def build_parser():
     s.set_defaults(func=lambda a: plot_shapes(a.runs[0], a.times, a.out))
     add("forces", "F_r and its pressure, inertia, viscous, elastic parts against t (figs 11, 13)",
         label=True).set_defaults(func=lambda a: plot_forces(a.runs, a.out, a.label_by))
-    add("models", "r/R and D against t, labelled by solid model and cells per diameter").set_defaults(
-        func=lambda a: plot_models(a.runs, a.out))
+    add("models", "r/R and D against t, labelled by solid model and cells per diameter", labels=True).set_defaults(
+        func=lambda a: plot_models(a.runs, a.out, a.labels))
     add("flow", "bulk_u, dp/dx, max_div, kinetic energy against t", multi=False).set_defaults(
         func=lambda a: plot_flow(a.runs[0], a.out))
     add("all", "every plot that applies to the runs", label=True,

@@ -25,6 +25,8 @@ R="$work/runs"; F="$work/figs"; runs="$R/re200_we0.5 $R/re400_we0.5 $R/re400_we4
 
 run $plot radial $runs --out "$F/radial.png";              check_file "$F/radial.png"
 run $plot radial $runs --out "$F/radial_we.png" --label-by We; check_file "$F/radial_we.png"
+run $plot radial $runs --out "$F/radial_labels.png" --labels "old code" "new code" "third"; check_file "$F/radial_labels.png"
+run $plot models $runs --out "$F/models_labels.png" --labels a b c; check_file "$F/models_labels.png"
 run $plot tcen $runs --out "$F/tcen.png";                  check_file "$F/tcen.png"
 run $plot trev-tosc $runs --out "$F/trev_tosc.png";        check_file "$F/trev_tosc.png"
 run $plot trajectory $runs --out "$F/trajectory.png";      check_file "$F/trajectory.png"
@@ -44,6 +46,7 @@ grep -q "note:" "$work/last.log" && echo "ok: notes for skipped plots" || fail "
 
 # errors: one line, exit code 2
 expect_rc 2 $plot radial "$work/no_such_run"
+expect_rc 2 $plot radial $runs --labels "one label for three runs"
 mkdir -p "$work/empty_run" && : >"$work/empty_run/particle.csv"
 expect_rc 2 $plot radial "$work/empty_run"
 head -1 "$R/re400_we4/particle.csv" >"$work/empty_run/particle.csv"
