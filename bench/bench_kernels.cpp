@@ -172,7 +172,7 @@ void BM_ScalarAdvectionRhs(benchmark::State& state) {
   const auto& body = c.solids.bodies()[0];
   const Field3 rhs = c.grid.make_field("psi_rhs");
   time_kernel(state, c.grid, cell_bytes(c.grid, 5), [&] {
-    kernels::scalar_advection_rhs(rhs, body.psi, c.flow.state().vel, c.grid.h, c.grid.interior());
+    kernels::scalar_advection_rhs(rhs, body.psi.data, c.flow.state().vel, c.grid.h, c.grid.interior());
   });
 }
 
@@ -184,7 +184,7 @@ void BM_TensorTransportRhs(benchmark::State& state) {
   kernels::Tensor6 rhs;
   for (int s = 0; s < kernels::kTensorComponents; ++s) rhs.c[s] = c.grid.make_field("b_rhs");
   time_kernel(state, c.grid, cell_bytes(c.grid, 16), [&] {
-    kernels::tensor_transport_rhs(rhs, body.b, c.flow.state().vel, body.psi, 1e-6, c.grid.h, c.grid.interior());
+    kernels::tensor_transport_rhs(rhs, body.b, c.flow.state().vel, body.psi.data, 1e-6, c.grid.h, c.grid.interior());
   });
 }
 

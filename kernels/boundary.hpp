@@ -68,4 +68,19 @@ inline void fill_ghosts(const Field3& f, int dir, int n, GhostRule rule, double 
   }
 }
 
+// The Even rule on either side of f along `dir` (1 or 2): f(first - 1 - m) = f(first + m) on the low
+// side, f(last + 1 + m) = f(last - m) on the high side, over the x-planes [x_lo, x_hi) and every
+// other index. For a field on a window that holds one wall's ghosts only (first, last: the owned
+// range in the field's own numbering).
+inline void mirror_ghosts(const Field3& f, int dir, int first, int last, bool low, bool high, int x_lo, int x_hi) {
+  const int eb = static_cast<int>(f.extent(dir == 1 ? 2 : 1));
+  const Policy2 plane({x_lo, 0}, {x_hi > x_lo ? x_hi : x_lo, eb});
+  Kokkos::parallel_for("eulerfsi::boundary::mirror_ghosts", plane, KOKKOS_LAMBDA(int a, int b) {
+    for (int m = 0; m < kGhost; ++m) {
+      if (low) (dir == 1 ? f(a, first - 1 - m, b) : f(a, b, first - 1 - m)) = (dir == 1 ? f(a, first + m, b) : f(a, b, first + m));
+      if (high) (dir == 1 ? f(a, last + 1 + m, b) : f(a, b, last + 1 + m)) = (dir == 1 ? f(a, last - m, b) : f(a, b, last - m));
+    }
+  });
+}
+
 }  // namespace eulerfsi::kernels

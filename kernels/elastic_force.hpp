@@ -15,7 +15,7 @@ namespace eulerfsi::kernels {
 
 // S_AB at cell (i,j,k) with the Crank-Nicolson average of B (explicit: B is advanced first).
 template <int A, int B>
-KOKKOS_FORCEINLINE_FUNCTION double elastic_stress(const Field3& psi, const Tensor6& b, const Tensor6& bp, double G,
+KOKKOS_FORCEINLINE_FUNCTION double elastic_stress(const WindowField& psi, const Tensor6& b, const Tensor6& bp, double G,
                                                   int i, int j, int k) {
   constexpr int s = A == B ? A : (A + B == 1 ? XY : (A + B == 2 ? XZ : YZ));
   return psi(i, j, k) * G * (0.5 * (b.c[s](i, j, k) + bp.c[s](i, j, k)) - (A == B ? 1.0 : 0.0));
@@ -23,7 +23,7 @@ KOKKOS_FORCEINLINE_FUNCTION double elastic_stress(const Field3& psi, const Tenso
 
 // S_DE at the edge (i + e_D/2 + e_E/2): average of its four cells.
 template <int D, int E>
-KOKKOS_FORCEINLINE_FUNCTION double elastic_stress_edge(const Field3& psi, const Tensor6& b, const Tensor6& bp,
+KOKKOS_FORCEINLINE_FUNCTION double elastic_stress_edge(const WindowField& psi, const Tensor6& b, const Tensor6& bp,
                                                        double G, int i, int j, int k) {
   constexpr int di = Unit<D>::i, dj = Unit<D>::j, dk = Unit<D>::k;
   constexpr int ei = Unit<E>::i, ej = Unit<E>::j, ek = Unit<E>::k;
@@ -35,7 +35,7 @@ KOKKOS_FORCEINLINE_FUNCTION double elastic_stress_edge(const Field3& psi, const 
 
 // (div S)_D at the D-face between cells i and i + e_D.
 template <int D>
-KOKKOS_FORCEINLINE_FUNCTION double elastic_force_at_face(const Field3& psi, const Tensor6& b, const Tensor6& bp,
+KOKKOS_FORCEINLINE_FUNCTION double elastic_force_at_face(const WindowField& psi, const Tensor6& b, const Tensor6& bp,
                                                          double G, const double inv_h[3], int i, int j, int k) {
   constexpr int E1 = (D + 1) % 3, E2 = (D + 2) % 3;
   const double fn = (elastic_stress<D, D>(psi, b, bp, G, i + Unit<D>::i, j + Unit<D>::j, k + Unit<D>::k) -
@@ -53,7 +53,7 @@ KOKKOS_FORCEINLINE_FUNCTION double elastic_force_at_face(const Field3& psi, cons
 // Largest psi over the ten cells the D-face stencil reads: the two cells of the face and their
 // neighbours across each edge. Zero means a zero force (most faces, far from the body).
 template <int D>
-KOKKOS_FORCEINLINE_FUNCTION double face_stencil_max(const Field3& psi, int i, int j, int k) {
+KOKKOS_FORCEINLINE_FUNCTION double face_stencil_max(const WindowField& psi, int i, int j, int k) {
   constexpr int E1 = (D + 1) % 3, E2 = (D + 2) % 3;
   double m = 0.0;
   for (int a = 0; a <= 1; ++a) {
@@ -68,7 +68,8 @@ KOKKOS_FORCEINLINE_FUNCTION double face_stencil_max(const Field3& psi, int i, in
 
 template <int D>
 struct ElasticForce {
-  Field3 rhs, psi;
+  Field3 rhs;
+  WindowField psi;
   Tensor6 b, bp;
   double G;
   double inv_h[3];
@@ -79,7 +80,7 @@ struct ElasticForce {
 };
 
 // rhs_D += (div S)_D on the D-faces of `box` for D = x, y, z (one body; call once per body).
-inline void add_elastic_force(const Velocity& rhs, const Field3& psi, const Tensor6& b, const Tensor6& b_prev, double G,
+inline void add_elastic_force(const Velocity& rhs, const WindowField& psi, const Tensor6& b, const Tensor6& b_prev, double G,
                               const double h[3], const Box& box) {
   const double ih0 = 1.0 / h[0], ih1 = 1.0 / h[1], ih2 = 1.0 / h[2];
   for_each_cell("eulerfsi::solid::elastic_u", box,
@@ -97,7 +98,7 @@ inline void fill_box(const Field3& f, double value, const Box& box) {
 
 // mu += psi dmu: the caller starts from mu = mu_f and adds each body with dmu = mu_s - mu_f,
 // giving mu = (1 - sum psi) mu_f + sum psi mu_s.
-inline void mixture_viscosity_add(const Field3& mu, const Field3& psi, double dmu, const Box& box) {
+inline void mixture_viscosity_add(const Field3& mu, const WindowField& psi, double dmu, const Box& box) {
   for_each_cell("eulerfsi::solid::mixture_viscosity", box, KOKKOS_LAMBDA(int i, int j, int k) {
     mu(i, j, k) += psi(i, j, k) * dmu;
   });
@@ -107,7 +108,7 @@ inline void mixture_viscosity_add(const Field3& mu, const Field3& psi, double dm
 // isochoric form, zero for B = I and never negative (the arithmetic-geometric mean of B's
 // eigenvalues), also where the discrete B is not exactly volume-preserving (det B = 1 is exact
 // only in the continuum). The field snapshots' measure of how strained the solid is.
-inline void elastic_energy_add(const Field3& out, const Field3& psi, const Tensor6& b, double G, const Box& box) {
+inline void elastic_energy_add(const Field3& out, const WindowField& psi, const Tensor6& b, double G, const Box& box) {
   const Tensor6 t = b;
   for_each_cell("eulerfsi::solid::elastic_energy", box, KOKKOS_LAMBDA(int i, int j, int k) {
     const double xx = t.c[XX](i, j, k), yy = t.c[YY](i, j, k), zz = t.c[ZZ](i, j, k);

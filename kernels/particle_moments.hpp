@@ -69,7 +69,8 @@ KOKKOS_INLINE_FUNCTION double min_image(double d, double L) {
 }
 
 struct FirstMomentTerm {
-  Field3 psi, u, v, w;
+  WindowField psi;
+  Field3 u, v, w;
   CellCentres xc;
   double kx;  // 2 pi / Lx
   int what;
@@ -93,7 +94,7 @@ struct FirstMomentTerm {
 };
 
 struct SecondMomentTerm {
-  Field3 psi;
+  WindowField psi;
   CellCentres xc;
   double c[3], period[3];
   int what;  // 0..2: m1, 3..8: m2
@@ -176,7 +177,7 @@ KOKKOS_INLINE_FUNCTION double force_term(int term, const Field3& p, const Veloci
     default: {  // G d(B_DE)/dx_E by central differences (I is divergence free)
       double s = 0.0;
       for (int e = 0; e < 3; ++e) {
-        const Field3& bde = b.c[tensor_index(D, e)];
+        const WindowField& bde = b.c[tensor_index(D, e)];
         const int ei = e == 0, ej = e == 1, ek = e == 2;
         s += 0.5 * inv_h[e] * (bde(i + ei, j + ej, k + ek) - bde(i - ei, j - ej, k - ek));
       }
@@ -186,7 +187,8 @@ KOKKOS_INLINE_FUNCTION double force_term(int term, const Field3& p, const Veloci
 }
 
 struct ForceTerm {
-  Field3 psi, p;
+  WindowField psi;
+  Field3 p;
   Velocity vel;
   Tensor6 b;
   double G, mu_s, u_frame;
@@ -203,11 +205,11 @@ struct ForceTerm {
 };
 
 // mu = mu_f + psi dmu at a cell centre, and its four-cell average on the D-E edge.
-KOKKOS_INLINE_FUNCTION double mixture_mu(const Field3& psi, double mu_f, double dmu, int a, int b, int c) {
+KOKKOS_INLINE_FUNCTION double mixture_mu(const WindowField& psi, double mu_f, double dmu, int a, int b, int c) {
   return mu_f + dmu * psi(a, b, c);
 }
 template <int D, int E>
-KOKKOS_INLINE_FUNCTION double mixture_mu_edge(const Field3& psi, double mu_f, double dmu, int a, int b, int c) {
+KOKKOS_INLINE_FUNCTION double mixture_mu_edge(const WindowField& psi, double mu_f, double dmu, int a, int b, int c) {
   constexpr int di = Unit<D>::i, dj = Unit<D>::j, dk = Unit<D>::k, ei = Unit<E>::i, ej = Unit<E>::j, ek = Unit<E>::k;
   return 0.25 * (mixture_mu(psi, mu_f, dmu, a, b, c) + mixture_mu(psi, mu_f, dmu, a + di, b + dj, c + dk) +
                  mixture_mu(psi, mu_f, dmu, a + ei, b + ej, c + ek) +
@@ -217,7 +219,7 @@ KOKKOS_INLINE_FUNCTION double mixture_mu_edge(const Field3& psi, double mu_f, do
 // div(2 mu E)_D at the D-face with the mixture viscosity mu = mu_f + psi dmu at cell centres and
 // the four-cell average on edges: the viscous stencil of kernels/momentum.hpp.
 template <int D>
-KOKKOS_INLINE_FUNCTION double mixture_viscous_at_face(const Velocity& vel, const Field3& psi, double mu_f, double dmu,
+KOKKOS_INLINE_FUNCTION double mixture_viscous_at_face(const Velocity& vel, const WindowField& psi, double mu_f, double dmu,
                                                       const double inv_h[3], int i, int j, int k) {
   constexpr int E1 = (D + 1) % 3, E2 = (D + 2) % 3;
   const Field3& uD = vel.c[D];
@@ -240,7 +242,7 @@ KOKKOS_INLINE_FUNCTION double mixture_viscous_at_face(const Velocity& vel, const
 
 // One term of BodyMomentum in direction D at cell (i,j,k), psi weight included.
 template <int D>
-KOKKOS_INLINE_FUNCTION double momentum_term(int term, const Field3& psi, const Field3& p, const Velocity& vel,
+KOKKOS_INLINE_FUNCTION double momentum_term(int term, const WindowField& psi, const Field3& p, const Velocity& vel,
                                             const Tensor6& b, const Tensor6& bp, double G, double mu_f, double dmu,
                                             const double inv_h[3], int i, int j, int k) {
   constexpr int di = Unit<D>::i, dj = Unit<D>::j, dk = Unit<D>::k;
@@ -268,7 +270,8 @@ KOKKOS_INLINE_FUNCTION double momentum_term(int term, const Field3& psi, const F
 }
 
 struct MomentumTerm {
-  Field3 psi, p;
+  WindowField psi;
+  Field3 p;
   Velocity vel;
   Tensor6 b, bp;
   double G, mu_f, dmu;
@@ -285,7 +288,7 @@ struct MomentumTerm {
 
 // First moments of psi over `box` (owned cells), each times dV. Lx: periodic length in x. Cells
 // with psi < psi_min are left out (the faint halo of numerical diffusion).
-inline BodyFirstMoments body_first_moments(const Field3& psi, const Velocity& vel, const CellCentres& xc, double Lx,
+inline BodyFirstMoments body_first_moments(const WindowField& psi, const Velocity& vel, const CellCentres& xc, double Lx,
                                            const Box& box, double psi_min = 0.0) {
   const double dv = xc.h[0] * xc.h[1] * xc.h[2];
   BodyFirstMoments r{};
@@ -298,14 +301,14 @@ inline BodyFirstMoments body_first_moments(const Field3& psi, const Velocity& ve
 
 // The body's mean x-velocity sum psi u_c / sum psi as {sum psi, sum psi u_c} (times dV omitted).
 // sum psi over the cells with psi >= psi_min (times dV omitted).
-inline double body_volume(const Field3& psi, const Box& box, double psi_min = 0.0) {
+inline double body_volume(const WindowField& psi, const Box& box, double psi_min = 0.0) {
   const CellCentres none{{0, 0, 0}, {1, 1, 1}};
   const Field3 unused;  // the volume term reads no velocity
   detail::FirstMomentTerm volume{psi, unused, unused, unused, none, 0.0, BodyFirstMoments::Volume, psi_min};
   return detail::sum_over("eulerfsi::diag::body_volume", box, volume);
 }
 
-inline void body_x_momentum(const Field3& psi, const Velocity& vel, const Box& box, double out[2],
+inline void body_x_momentum(const WindowField& psi, const Velocity& vel, const Box& box, double out[2],
                             double psi_min = 0.0) {
   const CellCentres none{{0, 0, 0}, {1, 1, 1}};
   detail::FirstMomentTerm momentum{psi, vel.c[0], vel.c[1], vel.c[2], none, 0.0, BodyFirstMoments::U, psi_min};
@@ -314,7 +317,7 @@ inline void body_x_momentum(const Field3& psi, const Velocity& vel, const Box& b
 }
 
 // Moments about the point c; period[d] = domain length in a periodic direction, 0 otherwise.
-inline BodySecondMoments body_second_moments(const Field3& psi, const CellCentres& xc, const double c[3],
+inline BodySecondMoments body_second_moments(const WindowField& psi, const CellCentres& xc, const double c[3],
                                              const double period[3], const Box& box, double psi_min = 0.0) {
   const double dv = xc.h[0] * xc.h[1] * xc.h[2];
   BodySecondMoments r{};
@@ -328,7 +331,7 @@ inline BodySecondMoments body_second_moments(const Field3& psi, const CellCentre
 
 // Force terms of the paper's eq. (force) for one body, in the laboratory frame (u_frame: the grid's
 // x-velocity; vel is relative to the grid); needs one ghost layer of p, u, B.
-inline BodyForces body_forces(const Field3& psi, const Field3& p, const Velocity& vel, const Tensor6& b, double G,
+inline BodyForces body_forces(const WindowField& psi, const Field3& p, const Velocity& vel, const Tensor6& b, double G,
                               double mu_s, double u_frame, const double h[3], const Box& box) {
   const double dv = h[0] * h[1] * h[2];
   BodyForces r{};
@@ -343,7 +346,7 @@ inline BodyForces body_forces(const Field3& psi, const Field3& p, const Velocity
 
 // The body's momentum and the forces that change it (BodyMomentum), in the grid's frame; needs
 // three ghost layers of psi (WENO) and one of p, u, B.
-inline BodyMomentum body_momentum(const Field3& psi, const Field3& p, const Velocity& vel, const Tensor6& b,
+inline BodyMomentum body_momentum(const WindowField& psi, const Field3& p, const Velocity& vel, const Tensor6& b,
                                   const Tensor6& b_prev, double G, double mu_f, double mu_s, const double h[3],
                                   const Box& box) {
   const double dv = h[0] * h[1] * h[2];
@@ -361,7 +364,7 @@ inline BodyMomentum body_momentum(const Field3& psi, const Field3& p, const Velo
 // sum psi cos(2 pi x_d / L) and sum psi sin(2 pi x_d / L) over the box (times dV) for the periodic
 // direction d = 1 or 2: the circular mean of a body that may straddle that direction's boundary
 // (the plain mean of one that does lies half a period off).
-inline void body_circular_moments(const Field3& psi, const CellCentres& xc, int d, double L, const Box& box,
+inline void body_circular_moments(const WindowField& psi, const CellCentres& xc, int d, double L, const Box& box,
                                   double psi_min, double out[2]) {
   const double dv = xc.h[0] * xc.h[1] * xc.h[2], kd = 2.0 * M_PI / L;
   for (int q = 0; q < 2; ++q) {

@@ -19,7 +19,7 @@
 namespace eulerfsi::kernels {
 
 struct Vector3 {
-  Field3 c[3];
+  WindowField c[3];
 };
 
 // The reference shape: a sphere (nearest periodic image of its centre) or the layer y < y_top.
@@ -102,7 +102,7 @@ KOKKOS_INLINE_FUNCTION double smoothed_delta(double s, double eps) {
 
 // rhs_a = -u_a - u . grad q_a on every known cell (level >= 1), 0 elsewhere;
 // u . grad q = div_h^WENO(u q) - q div_h(u), u_a at the centre = mean of the two a-faces.
-inline void reference_map_rhs(const Vector3& rhs, const Vector3& q, const Field3& level, const Velocity& vel,
+inline void reference_map_rhs(const Vector3& rhs, const Vector3& q, const WindowField& level, const Velocity& vel,
                               const double h[3], const Box& box) {
   const double ih0 = 1.0 / h[0], ih1 = 1.0 / h[1], ih2 = 1.0 / h[2];
   const Field3 u = vel.c[0], v = vel.c[1], w = vel.c[2];
@@ -136,7 +136,7 @@ inline void rk3_vector_update(const Vector3& q, const Vector3& rhs, const Vector
 // body (d < -margin) and the cell was known before (level in [1, reach]: the body moves less than a
 // cell per step, and an unknown cell's q is stale), else 0. Cells of the outer layer (-margin <= d)
 // are extrapolated from the deeper ones like the fluid side (see kSolidMarginCells).
-inline void classify_solid(const Field3& level, const Vector3& q, const ReferenceShape& shape, const CellCentres& xc,
+inline void classify_solid(const WindowField& level, const Vector3& q, const ReferenceShape& shape, const CellCentres& xc,
                            double reach, double margin, bool initial, const double h[3], const Box& box) {
   const double i2h[3] = {0.5 / h[0], 0.5 / h[1], 0.5 / h[2]};
   const double i0 = i2h[0], i1 = i2h[1], i2 = i2h[2];
@@ -161,7 +161,7 @@ inline void classify_solid(const Field3& level, const Vector3& q, const Referenc
 // Fewer than four points or a degenerate set fall back to the weighted mean.
 struct ExtrapolationSweep {
   Vector3 q;
-  Field3 level;
+  WindowField level;
   double s;
 
   // Solves the 4x4 system M c = b (Gaussian elimination, partial pivoting) for c[0]; false if singular.
@@ -235,7 +235,7 @@ struct ExtrapolationSweep {
   }
 };
 
-inline void extrapolation_sweep(const Vector3& q, const Field3& level, int sweep, const Box& box) {
+inline void extrapolation_sweep(const Vector3& q, const WindowField& level, int sweep, const Box& box) {
   for_each_cell("eulerfsi::refmap::extrapolate", box, ExtrapolationSweep{q, level, double(sweep)});
 }
 
@@ -244,7 +244,7 @@ inline void extrapolation_sweep(const Vector3& q, const Field3& level, int sweep
 //   psi = H_eps(-d),  eps = width x (grid spacing along the normal),  B = F F^T,  F = (I + grad q)^-1
 // psi at a cell: H_eps(-d) with eps = width x (spacing along the normal), on the known cells whose
 // central differences read known cells (1 <= level <= max_level); -1 elsewhere (psi = 0 and B = I there).
-KOKKOS_INLINE_FUNCTION double psi_of_map(const Vector3& q, const Field3& level, const ReferenceShape& shape,
+KOKKOS_INLINE_FUNCTION double psi_of_map(const Vector3& q, const WindowField& level, const ReferenceShape& shape,
                                          const CellCentres& xc, const double inv_2h[3], double width, double max_level,
                                          int i, int j, int k) {
   const double l = level(i, j, k);
@@ -255,7 +255,7 @@ KOKKOS_INLINE_FUNCTION double psi_of_map(const Vector3& q, const Field3& level, 
   return smoothed_heaviside(-d, width * hn);
 }
 
-inline void solid_from_map(const Field3& psi, const Tensor6& b, const Vector3& q, const Field3& level,
+inline void solid_from_map(const WindowField& psi, const Tensor6& b, const Vector3& q, const WindowField& level,
                            const ReferenceShape& shape, const CellCentres& xc, double width, double max_level,
                            const double h[3], const Box& box) {
   const double i0 = 0.5 / h[0], i1 = 0.5 / h[1], i2 = 0.5 / h[2];
@@ -301,7 +301,7 @@ inline void solid_from_map(const Field3& psi, const Tensor6& b, const Vector3& q
 
 // psi alone (solid_from_map's, at any half-width): the volume correction, which moves only the
 // level, and the diagnostics' zero-width extrapolation of the shape moments.
-inline void psi_from_map(const Field3& psi, const Vector3& q, const Field3& level, const ReferenceShape& shape,
+inline void psi_from_map(const WindowField& psi, const Vector3& q, const WindowField& level, const ReferenceShape& shape,
                          const CellCentres& xc, double width, double max_level, const double h[3], const Box& box) {
   const double i0 = 0.5 / h[0], i1 = 0.5 / h[1], i2 = 0.5 / h[2];
   const Vector3 m = q;
@@ -313,7 +313,7 @@ inline void psi_from_map(const Field3& psi, const Vector3& q, const Field3& leve
 
 // sum psi and sum |grad psi| (central differences) over the box, times the cell volume: the
 // body's volume and surface area (dV/dshift of the level shift, for the volume correction).
-inline void volume_and_area(const Field3& psi, const double h[3], const Box& box, double& volume, double& area) {
+inline void volume_and_area(const WindowField& psi, const double h[3], const Box& box, double& volume, double& area) {
   const double i0 = 0.5 / h[0], i1 = 0.5 / h[1], i2 = 0.5 / h[2], dv = h[0] * h[1] * h[2];
   double v = 0.0, a = 0.0;
   reduce_cells("eulerfsi::refmap::volume", box, KOKKOS_LAMBDA(int i, int j, int k, double& acc) {
@@ -331,7 +331,9 @@ inline void volume_and_area(const Field3& psi, const double h[3], const Box& box
 
 // Ghosts of q at a wall (y or z): linear extrapolation from the first two interior cells,
 // q(-m) = q(0) - m (q(1) - q(0)), exact for a linear map (the mirror fill of a scalar is not).
-inline void extrapolate_wall_ghosts(const Vector3& q, int dir, int n_interior, const Box& all) {
+// low / high: which of the two walls (a window may hold the ghosts of one only).
+inline void extrapolate_wall_ghosts(const Vector3& q, int dir, int n_interior, const Box& all, bool low = true,
+                                    bool high = true) {
   const int lo = kGhost, hi = kGhost + n_interior - 1;
   Box plane = all;
   plane.lo[dir] = 0;
@@ -339,14 +341,16 @@ inline void extrapolate_wall_ghosts(const Vector3& q, int dir, int n_interior, c
   // (i, s, k) for dir = 1, (i, j, s) for dir = 2: s is the wall-normal index
   const int sj = dir == 1, sk = dir == 2;
   for (int a = 0; a < 3; ++a) {
-    const Field3 f = q.c[a];
+    const WindowField f = q.c[a];
     for_each_cell("eulerfsi::refmap::wall_ghosts", plane, KOKKOS_LAMBDA(int i, int j, int k) {
       const int j0 = j * (1 - sj), k0 = k * (1 - sk);
-      const double qlo = f(i, j0 + sj * lo, k0 + sk * lo), qlo1 = f(i, j0 + sj * (lo + 1), k0 + sk * (lo + 1));
-      const double qhi = f(i, j0 + sj * hi, k0 + sk * hi), qhi1 = f(i, j0 + sj * (hi - 1), k0 + sk * (hi - 1));
-      for (int m = 1; m <= kGhost; ++m) {
-        f(i, j0 + sj * (lo - m), k0 + sk * (lo - m)) = qlo - m * (qlo1 - qlo);
-        f(i, j0 + sj * (hi + m), k0 + sk * (hi + m)) = qhi - m * (qhi1 - qhi);
+      if (low) {
+        const double qlo = f(i, j0 + sj * lo, k0 + sk * lo), qlo1 = f(i, j0 + sj * (lo + 1), k0 + sk * (lo + 1));
+        for (int m = 1; m <= kGhost; ++m) f(i, j0 + sj * (lo - m), k0 + sk * (lo - m)) = qlo - m * (qlo1 - qlo);
+      }
+      if (high) {
+        const double qhi = f(i, j0 + sj * hi, k0 + sk * hi), qhi1 = f(i, j0 + sj * (hi - 1), k0 + sk * (hi - 1));
+        for (int m = 1; m <= kGhost; ++m) f(i, j0 + sj * (hi + m), k0 + sk * (hi + m)) = qhi - m * (qhi1 - qhi);
       }
     });
   }
@@ -356,7 +360,8 @@ inline void extrapolate_wall_ghosts(const Vector3& q, int dir, int n_interior, c
 // two owned cells, which may themselves be unknown (stale) during an extrapolation sweep; a
 // mirrored level would let the sweep fit through them, and a stale q(0) re-enters q(0) tripled
 // (q(-2) = 3 q(0) - 2 q(1)) every step: the divergence of a body within 4 cells of a wall.
-inline void clear_wall_ghosts(const Field3& level, int dir, int n_interior, const Box& all) {
+inline void clear_wall_ghosts(const WindowField& level, int dir, int n_interior, const Box& all, bool low = true,
+                              bool high = true) {
   const int lo = kGhost, hi = kGhost + n_interior - 1;
   Box plane = all;
   plane.lo[dir] = 0;
@@ -365,8 +370,8 @@ inline void clear_wall_ghosts(const Field3& level, int dir, int n_interior, cons
   for_each_cell("eulerfsi::refmap::wall_level", plane, KOKKOS_LAMBDA(int i, int j, int k) {
     const int m = sj * j + sk * k + 1;  // ghost layer 1..kGhost
     const int j0 = j * (1 - sj), k0 = k * (1 - sk);
-    level(i, j0 + sj * (lo - m), k0 + sk * (lo - m)) = 0.0;
-    level(i, j0 + sj * (hi + m), k0 + sk * (hi + m)) = 0.0;
+    if (low) level(i, j0 + sj * (lo - m), k0 + sk * (lo - m)) = 0.0;
+    if (high) level(i, j0 + sj * (hi + m), k0 + sk * (hi + m)) = 0.0;
   });
 }
 

@@ -2,6 +2,7 @@
 // Storage of one soft body: the solid volume fraction psi and the left Cauchy-Green tensor B
 // (the paper's xi), six independent components, all at cell centres.
 #include "core/types.hpp"
+#include "core/window_field.hpp"
 
 namespace eulerfsi::kernels {
 
@@ -24,7 +25,7 @@ struct CellCentres {
 };
 
 struct Tensor6 {
-  Field3 c[kTensorComponents];
+  WindowField c[kTensorComponents];
 };
 
 }  // namespace eulerfsi::kernels

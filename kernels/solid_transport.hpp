@@ -17,8 +17,8 @@
 namespace eulerfsi::kernels {
 
 // (F_D(i) - F_D(i - e_D)) / h_D with F_D(i) = u_D(i) q^WENO at the face between i and i+e_D.
-template <int D>
-KOKKOS_FORCEINLINE_FUNCTION double weno_flux_difference(const Field3& q, const Field3& uD, double inv_h, int i, int j,
+template <int D, class Q>
+KOKKOS_FORCEINLINE_FUNCTION double weno_flux_difference(const Q& q, const Field3& uD, double inv_h, int i, int j,
                                                         int k) {
   const double up = uD(i, j, k);
   const double um = shifted<D>(uD, i, j, k, -1);
@@ -27,7 +27,8 @@ KOKKOS_FORCEINLINE_FUNCTION double weno_flux_difference(const Field3& q, const F
   return (fp - fm) * inv_h;
 }
 
-KOKKOS_FORCEINLINE_FUNCTION double weno_divergence(const Field3& q, const Field3& u, const Field3& v, const Field3& w,
+template <class Q>
+KOKKOS_FORCEINLINE_FUNCTION double weno_divergence(const Q& q, const Field3& u, const Field3& v, const Field3& w,
                                                    const double inv_h[3], int i, int j, int k) {
   return weno_flux_difference<0>(q, u, inv_h[0], i, j, k) + weno_flux_difference<1>(q, v, inv_h[1], i, j, k) +
          weno_flux_difference<2>(q, w, inv_h[2], i, j, k);
@@ -50,7 +51,8 @@ KOKKOS_FORCEINLINE_FUNCTION double velocity_gradient_at_centre(const Field3& uA,
 // Largest |psi| on the 19-point star of radius 3 that the face fluxes of cell (i,j,k) read: zero
 // means every flux through the cell's faces is exactly zero (|psi|, so that an undershoot below
 // zero still counts: skipping it on one side of a face only would break conservation).
-KOKKOS_FORCEINLINE_FUNCTION double star_max(const Field3& psi, int i, int j, int k) {
+template <class Q>
+KOKKOS_FORCEINLINE_FUNCTION double star_max(const Q& psi, int i, int j, int k) {
   double m = compat::fabs(psi(i, j, k));
   for (int r = 1; r <= 3; ++r) {
     m = compat::fmax(m, compat::fmax(compat::fabs(psi(i - r, j, k)), compat::fabs(psi(i + r, j, k))));
@@ -136,11 +138,11 @@ inline void rk3_scalar_update(const Field3& q, const Field3& rhs, const Field3& 
 }
 
 // B = B0 + dt (gamma rhs + zeta rhs_old), component by component (B0: the tensor before the
-// substep, kept by the caller as B_prev).
+// substep, kept by the caller as B_prev). Whole-slab tensors (the flat index is the storage's).
 inline void rk3_tensor_update(const Tensor6& b, const Tensor6& b0, const Tensor6& rhs, const Tensor6& rhs_old, double dt,
                               double gamma, double zeta, const Box& box) {
   for (int s = 0; s < kTensorComponents; ++s)
-    rk3_field_update(b.c[s], b0.c[s], rhs.c[s], rhs_old.c[s], dt * gamma, dt * zeta, box, "eulerfsi::solid::b_update");
+    rk3_field_update(b.c[s].data, b0.c[s].data, rhs.c[s].data, rhs_old.c[s].data, dt * gamma, dt * zeta, box, "eulerfsi::solid::b_update");
 }
 
 // psi = min(max(psi, 0), 1): WENO5 is essentially non-oscillatory, not bounded, so a sharp

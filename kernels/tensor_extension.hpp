@@ -19,7 +19,7 @@
 namespace eulerfsi::kernels {
 
 // known = 1 where psi >= psi_solid and B is positive definite (the solid's own B), else 0.
-inline void mark_solid_tensor(const Field3& known, const Field3& psi, const Tensor6& b, double psi_solid,
+inline void mark_solid_tensor(const Field3& known, const WindowField& psi, const Tensor6& b, double psi_solid,
                               const Box& box) {
   for_each_cell("eulerfsi::solid::b_mark", box, KOKKOS_LAMBDA(int i, int j, int k) {
     // most cells are fluid: B is read only inside the solid
@@ -73,7 +73,7 @@ inline void reset_unknown_tensor(const Tensor6& b, const Field3& known, const Bo
 // Sweep s can only reach cells within s face steps of a known one, so the sweeps run on the
 // bounding box of the known cells grown by s (the particle, not the whole domain).
 // Returns false when there is no known cell in `box`.
-inline bool known_bounding_box(const Field3& known, const Box& box, Box& out) {
+inline bool known_bounding_box(const WindowField& known, const Box& box, Box& out) {
   int lo[3], hi[3];
   for (int d = 0; d < 3; ++d) {
     int neg_lo = -(1 << 30), h = -(1 << 30);
@@ -93,7 +93,7 @@ inline bool known_bounding_box(const Field3& known, const Box& box, Box& out) {
   return true;
 }
 
-inline void extend_tensor(const Tensor6& b, const Field3& known, const Field3& psi, double psi_solid, int band,
+inline void extend_tensor(const Tensor6& b, const Field3& known, const WindowField& psi, double psi_solid, int band,
                           const Box& box) {
   auto grown = [](const Box& x, int g) {
     return Box{{x.lo[0] - g, x.lo[1] - g, x.lo[2] - g}, {x.hi[0] + g, x.hi[1] + g, x.hi[2] + g}};

@@ -5,14 +5,16 @@
 
 namespace eulerfsi {
 
-std::string locate_non_finite(const std::vector<std::pair<std::string, Field3>>& fields, const Grid& g, MPI_Comm comm) {
+std::string locate_non_finite(const std::vector<std::pair<std::string, WindowField>>& fields, const Grid& g,
+                              MPI_Comm comm) {
   int rank = 0, nranks = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &nranks);
   char msg[256] = "";
-  const Box b = g.interior();
   for (const auto& [name, f] : fields) {
-    auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), f);
+    auto data = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), f.data);
+    const Box w = f.window(), b = intersection(g.interior(), w);
+    auto h = [&](int i, int j, int k) { return data(i - w.lo[0], j - w.lo[1], k - w.lo[2]); };
     for (int i = b.lo[0]; i < b.hi[0] && !msg[0]; ++i)
       for (int j = b.lo[1]; j < b.hi[1] && !msg[0]; ++j)
         for (int k = b.lo[2]; k < b.hi[2] && !msg[0]; ++k)

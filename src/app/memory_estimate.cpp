@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/types.hpp"
+#include "solid/reference_map_model.hpp"
 
 namespace eulerfsi {
 
@@ -22,12 +23,16 @@ constexpr double kPoissonFieldsFftDct = 4.0;
 constexpr double kImplicitViscosityFields = 2.0;
 // Field snapshots: total psi, the elastic energy density and the three centred velocity components.
 constexpr double kSnapshotFields = 5.0;
-// Every body: psi, B and B before the update (6 + 6) (src/solid/solid_body.hpp).
+// Every body: psi, B and B before the update (6 + 6) (src/solid/solid_body.hpp): on the whole
+// slab for the paper model, on the body's window for the reference map (src/solid/solid_window.hpp).
 constexpr double kBodyFields = 13.0;
-// The model's own: RK3 rhs and memory of psi and B (paper), or of q = xi - x and its level and
-// the diagnostics' psi at a second edge width (map).
+// The model's own: RK3 rhs and memory of psi and B (paper), or of q = xi - x (3 + 3 + 3), its
+// level and the diagnostics' psi at a second edge width (map, on the window).
 constexpr double kPaperModelFields = 14.0;
 constexpr double kReferenceMapFields = 11.0;
+// What reading a checkpoint (a restart) puts on the whole slab for a reference-map body before it
+// moves onto its window: psi, B, q and its level (writing packs from the window directly).
+constexpr double kReferenceMapStoredFields = 11.0;
 // Allocator and library overhead (FFTW plans, MPI buffers, the Kokkos runtime) on top.
 constexpr double kOverheadBytes = 64.0 * 1024 * 1024;
 
@@ -76,8 +81,18 @@ MemoryEstimate estimate_memory(const CaseConfig& cfg, const Grid& grid) {
   m.flow_fields = kFlowFields + (fft_dct ? kPoissonFieldsFftDct : kPoissonFieldsFftwMpi) +
                   (cfg.output.fields_every > 0 ? kSnapshotFields : 0.0) +
                   (cfg.time.implicit_viscosity ? kImplicitViscosityFields : 0.0);
-  for (const auto& s : cfg.solids)
-    m.solid_fields += kBodyFields + (s.model == SolidModelKind::Paper ? kPaperModelFields : kReferenceMapFields);
+  for (const auto& s : cfg.solids) {
+    if (s.model == SolidModelKind::Paper) {
+      m.solid_fields += kBodyFields + kPaperModelFields;
+      m.solid_peak_fields += kBodyFields + kPaperModelFields;
+      continue;
+    }
+    const double fields = kBodyFields + kReferenceMapFields;
+    const bool crosses_x_end = !cfg.flow.frame_follows_particle;
+    m.solid_fields += fields * ReferenceMapModel::window_cells(s, grid, false) / m.slab_cells;
+    m.solid_peak_fields +=
+        fields * ReferenceMapModel::window_cells(s, grid, crosses_x_end) / m.slab_cells + kReferenceMapStoredFields;
+  }
   return m;
 }
 
@@ -85,7 +100,11 @@ std::string describe_memory(const CaseConfig& cfg, const Grid& grid, const Comm&
   const MemoryEstimate m = estimate_memory(cfg, grid);
   std::ostringstream out;
   out << "# memory: about " << gib(m.bytes() + kOverheadBytes) << " per rank (" << m.flow_fields << " flow and "
-      << m.solid_fields << " solid fields of " << m.slab_cells << " cells, 8 bytes each)";
+      << m.solid_fields << " solid fields of " << m.slab_cells << " cells, 8 bytes each";
+  if (m.solid_peak_fields > m.solid_fields)
+    out << "; up to " << gib(m.peak_bytes() + kOverheadBytes) << " while a checkpoint is read"
+        << (cfg.flow.frame_follows_particle ? "" : " or a body crosses the periodic x end");
+  out << ")";
   const double avail = available_bytes();
   if (avail > 0.0) out << "; this node has " << gib(avail) << " available for " << ranks_on_node(comm) << " rank(s)";
   out << "\n";
@@ -96,7 +115,7 @@ void refuse_if_out_of_memory(const CaseConfig& cfg, const Grid& grid, const Comm
   if (!Kokkos::SpaceAccessibility<Kokkos::HostSpace, MemSpace>::accessible) return;  // device memory: not checked
   const double avail = available_bytes();
   const int ranks = ranks_on_node(comm);
-  const double need = (estimate_memory(cfg, grid).bytes() + kOverheadBytes) * ranks;
+  const double need = (estimate_memory(cfg, grid).peak_bytes() + kOverheadBytes) * ranks;
   if (!comm.any(avail > 0.0 && need > avail)) return;
   throw ConfigError(cfg.source + ": domain.cells = [" + std::to_string(cfg.domain.cells[0]) + ", " +
                     std::to_string(cfg.domain.cells[1]) + ", " + std::to_string(cfg.domain.cells[2]) + "] needs about " +

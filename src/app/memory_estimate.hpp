@@ -11,9 +11,15 @@ namespace eulerfsi {
 
 struct MemoryEstimate {
   double flow_fields = 0.0;   // whole-slab fields of the flow solver, output and Poisson work arrays
-  double solid_fields = 0.0;  // whole-slab fields of every body (shared ones and the model's own)
+  // every body's fields (shared ones and the model's own) in whole-slab equivalents: a body on a
+  // window (the reference map) counts its window's share of the slab, at its initial position
+  double solid_fields = 0.0;
+  // the most they reach: a window holding every x-plane while the body crosses the periodic end
+  // (grid at rest), and the whole-slab fields a checkpoint is read into (a restart)
+  double solid_peak_fields = 0.0;
   double slab_cells = 0.0;    // cells of this rank's slab, ghosts included
   double bytes() const { return 8.0 * (flow_fields + solid_fields) * slab_cells; }
+  double peak_bytes() const { return 8.0 * (flow_fields + solid_peak_fields) * slab_cells; }
   // bytes per owned cell of the global grid (ghosts included in the numerator)
   double bytes_per_cell(double owned_cells) const { return bytes() / owned_cells; }
 };

@@ -150,10 +150,15 @@ class Simulation {
     if (cfg_.output.profiles_every > 0) fs::create_directories(dir() + "/profiles");
   }
 
-  // Every field a step starts from, under the names the checkpoint stores.
-  std::vector<std::pair<std::string, Field3>> state_fields() {
+  // The flow's fields a step starts from, under the names the checkpoint stores.
+  std::vector<std::pair<std::string, Field3>> flow_fields() {
     auto& s = flow_.state();
-    std::vector<std::pair<std::string, Field3>> f = {{"u", s.u()}, {"v", s.v()}, {"w", s.w()}, {"p", s.p}};
+    return {{"u", s.u()}, {"v", s.v()}, {"w", s.w()}, {"p", s.p}};
+  }
+
+  // Every field a step starts from, to read a checkpoint into (the bodies' on the whole slab).
+  std::vector<std::pair<std::string, Field3>> state_fields() {
+    auto f = flow_fields();
     for (auto& field : solids_.checkpoint_fields()) f.push_back(field);
     return f;
   }
@@ -170,7 +175,10 @@ class Simulation {
     const auto xs = tracker_.unwrapped_x();
     for (size_t n = 0; n < xs.size(); ++n) meta.scalars["solid" + std::to_string(n) + ".x_unwrapped"] = xs[n];
     for (const auto& [key, v] : solids_.checkpoint_scalars()) meta.scalars[key] = v;
-    write_checkpoint(checkpoint_path(), grid_, comm_.comm, meta, state_fields());
+    std::vector<CheckpointSource> fields;
+    for (const auto& [name, f] : flow_fields()) fields.push_back({name, f, 0.0});
+    for (const auto& f : solids_.checkpoint_sources()) fields.push_back(f);
+    write_checkpoint(checkpoint_path(), grid_, comm_.comm, meta, fields);
   }
 
   void restore() {
@@ -304,7 +312,9 @@ class Simulation {
   }
 
   int report_blow_up(double dt, double dt_stable) {
-    auto fields = state_fields();
+    std::vector<std::pair<std::string, WindowField>> fields;
+    for (const auto& [name, f] : flow_fields()) fields.emplace_back(name, f);
+    for (const auto& f : solids_.checkpoint_sources()) fields.emplace_back(f.name, f.field);
     std::string where = locate_non_finite(fields, grid_, comm_.comm);
     // not a NaN yet: say where the velocity is largest
     const std::string fastest = where.empty() ? locate_fastest(flow_.state().vel.c, grid_, comm_.comm) : "";

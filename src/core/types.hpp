@@ -59,4 +59,15 @@ inline Box bounding_box(const Box& a, const Box& b) {
   return u;
 }
 
+// The cells both hold (empty, with lo == hi, where they do not meet).
+inline Box intersection(const Box& a, const Box& b) {
+  Box c;
+  for (int d = 0; d < 3; ++d) {
+    c.lo[d] = a.lo[d] > b.lo[d] ? a.lo[d] : b.lo[d];
+    const int hi = a.hi[d] < b.hi[d] ? a.hi[d] : b.hi[d];
+    c.hi[d] = hi > c.lo[d] ? hi : c.lo[d];
+  }
+  return c;
+}
+
 }  // namespace eulerfsi

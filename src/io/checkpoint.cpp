@@ -234,14 +234,18 @@ std::uint64_t text_checksum(const std::string& text) {
   return h;
 }
 
-// Owned cells in (x, y, z) order, i.e. exactly this rank's hyperslab of the dataset.
-std::vector<double> pack_interior(const Grid& g, const Field3& f) {
-  auto host = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), f);
-  std::vector<double> buf(size_t(g.nx_local) * g.n[1] * g.n[2]);
+// Owned cells in (x, y, z) order, i.e. exactly this rank's hyperslab of the dataset; `outside`
+// where the field's window does not reach.
+std::vector<double> pack_interior(const Grid& g, const CheckpointSource& src) {
+  auto host = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), src.field.data);
+  const Box w = src.field.window();
+  std::vector<double> buf(size_t(g.nx_local) * g.n[1] * g.n[2], src.outside);
   size_t c = 0;
-  for (int i = 0; i < g.nx_local; ++i)
-    for (int j = 0; j < g.n[1]; ++j)
-      for (int k = 0; k < g.n[2]; ++k) buf[c++] = host(i + kGhost, j + kGhost, k + kGhost);
+  for (int i = kGhost; i < kGhost + g.nx_local; ++i)
+    for (int j = kGhost; j < kGhost + g.n[1]; ++j)
+      for (int k = kGhost; k < kGhost + g.n[2]; ++k, ++c)
+        if (i >= w.lo[0] && i < w.hi[0] && j >= w.lo[1] && j < w.hi[1] && k >= w.lo[2] && k < w.hi[2])
+          buf[c] = host(i - w.lo[0], j - w.lo[1], k - w.lo[2]);
   return buf;
 }
 
@@ -256,6 +260,19 @@ void unpack_interior(const Grid& g, const std::vector<double>& buf, const Field3
 }
 
 // Programming errors, identical on every rank: no agreement needed.
+void check_sources(const Grid& g, const std::vector<CheckpointSource>& fields) {
+  std::set<std::string> seen;
+  const Box all = g.all();
+  for (const auto& f : fields) {
+    if (f.name.empty() || f.name.find('/') != std::string::npos || f.name == "." || !seen.insert(f.name).second)
+      throw std::invalid_argument("checkpoint field name '" + f.name + "' is empty, contains '/' or repeats");
+    const Box w = f.field.window();
+    for (int d = 0; d < 3; ++d)
+      if (w.lo[d] < all.lo[d] || w.hi[d] > all.hi[d])
+        throw std::invalid_argument("checkpoint field '" + f.name + "' reaches beyond the grid");
+  }
+}
+
 void check_fields(const Grid& g, const std::vector<std::pair<std::string, Field3>>& fields) {
   std::set<std::string> seen;
   for (const auto& [name, f] : fields) {
@@ -336,7 +353,7 @@ void write_meta(hid_t file, const CheckpointMeta& m, hid_t dxpl) {
 
 // Writes the complete file at tmp; returns false on any rank's failure (agreed on every rank).
 bool write_tmp(const std::string& tmp, const Grid& g, MPI_Comm comm, const CheckpointMeta& m,
-               const std::vector<std::pair<std::string, Field3>>& fields, std::string& why) {
+               const std::vector<CheckpointSource>& fields, std::string& why) {
   Hid fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
   H5Pset_fapl_mpio(fapl.get(), comm, MPI_INFO_NULL);
   // superblock v2+: HDF5 checksums its own metadata, ours cover the data
@@ -350,9 +367,9 @@ bool write_tmp(const std::string& tmp, const Grid& g, MPI_Comm comm, const Check
   write_meta(file.get(), m, dxpl.get());
   Hid group(H5Gcreate2(file.get(), "fields", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
   bool ok = group.ok();
-  for (const auto& [name, f] : fields) {
+  for (const auto& f : fields) {
     const auto buf = pack_interior(g, f);
-    write_field(group.get(), g, name, buf, global_checksum(comm, g, buf), dxpl.get(), ok);
+    write_field(group.get(), g, f.name, buf, global_checksum(comm, g, buf), dxpl.get(), ok);
   }
   group.close();
   // H5Fflush makes every rank MPI_File_sync its own writes; H5Fclose alone does not sync
@@ -516,8 +533,8 @@ bool read_slabs(const std::string& path, const Grid& g, MPI_Comm comm,
 }  // namespace
 
 void write_checkpoint(const std::string& path, const Grid& grid, MPI_Comm comm, const CheckpointMeta& meta,
-                      const std::vector<std::pair<std::string, Field3>>& fields, bool keep_previous) {
-  check_fields(grid, fields);
+                      const std::vector<CheckpointSource>& fields, bool keep_previous) {
+  check_sources(grid, fields);
   const QuietHdf5 quiet;
   const int rank = rank_of(comm);
   // rank 0's meta is the one written: attribute writes must be identical on every rank

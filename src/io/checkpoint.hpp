@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "core/types.hpp"
+#include "core/window_field.hpp"
 #include "grid/grid.hpp"
 
 namespace eulerfsi {
@@ -50,10 +51,18 @@ struct CheckpointMeta {
   int nranks = 0;
 };
 
+// A field to write: on the whole slab, or on a window of it with one value everywhere else (a
+// body's field, src/solid/solid_window.hpp), written without a whole-slab copy.
+struct CheckpointSource {
+  std::string name;
+  WindowField field;
+  double outside = 0.0;
+};
+
 // Collective. Writes the owned cells of every field plus `meta` (rank 0's copy is the one written).
 // Throws CheckpointError on every rank if any step fails; `path` is then untouched.
 void write_checkpoint(const std::string& path, const Grid& grid, MPI_Comm comm, const CheckpointMeta& meta,
-                      const std::vector<std::pair<std::string, Field3>>& fields, bool keep_previous = true);
+                      const std::vector<CheckpointSource>& fields, bool keep_previous = true);
 
 // Collective. Fills the owned cells of each named field (ghosts untouched: the caller refills them)
 // and returns the metadata. Refuses, with the same CheckpointError on every rank and the fields left

@@ -26,7 +26,7 @@ void FieldWriter::write_xdmf() const { no_hdf5("fields.xdmf"); }
 void write_hdf5_field(long, const Grid&, const std::string& name, const Field3&) { no_hdf5("field " + name); }
 
 void write_checkpoint(const std::string& path, const Grid&, MPI_Comm, const CheckpointMeta&,
-                      const std::vector<std::pair<std::string, Field3>>&, bool) {
+                      const std::vector<CheckpointSource>&, bool) {
   throw CheckpointError("cannot write checkpoint '" + path +
                         "': this eulerfsi was built without HDF5 (-DEULERFSI_ENABLE_HDF5=OFF)");
 }

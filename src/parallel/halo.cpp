@@ -82,4 +82,60 @@ void exchange_x(Field3 f, const Grid& g, MPI_Comm comm) {
   Kokkos::deep_copy(slab(recv_left), in_l);
 }
 
+void exchange_x(const WindowField& f, const Grid& g, MPI_Comm comm) {
+  const int nx = g.nx_local, a = f.lo[0], b = f.lo[0] + int(f.data.extent(0));
+  if (a == 0 && b == nx + 2 * kGhost) {  // every plane: the whole-slab exchange
+    exchange_x(f.data, g, comm);
+    return;
+  }
+  int rank = 0, size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  if (size == 1) {
+    if (a < kGhost || b > nx + kGhost)
+      throw std::logic_error("exchange_x: a window holding an x-ghost plane on one rank must hold every plane");
+    return;  // no ghost plane in the window: nothing to fill
+  }
+  const long plane = long(f.data.extent(1)) * long(f.data.extent(2));
+  // [lo, hi) of storage planes cut to the window, as an offset into its data and a count
+  auto cut = [a, b, plane](int lo, int hi, long& offset, int& count) {
+    lo = lo > a ? lo : a;
+    hi = hi < b ? hi : b;
+    offset = long(lo - a) * plane;
+    const long n = hi > lo ? long(hi - lo) * plane : 0;
+    if (n > INT_MAX) throw std::invalid_argument("exchange_x: ghost slab too large for one MPI message");
+    count = int(n);
+  };
+  long send_left, recv_right, send_right, recv_left;
+  int n_send_left, n_recv_right, n_send_right, n_recv_left;
+  cut(kGhost, 2 * kGhost, send_left, n_send_left);
+  cut(kGhost + nx, 2 * kGhost + nx, recv_right, n_recv_right);
+  cut(nx, nx + kGhost, send_right, n_send_right);
+  cut(0, kGhost, recv_left, n_recv_left);
+  const int left = (rank - 1 + size) % size, right = (rank + 1) % size;
+  constexpr int kTagToLeft = 703, kTagToRight = 704;
+  compat::fence();
+  double* p = f.data.data();
+  if (kMpiReadsMemSpace) {
+    MPI_Sendrecv(p + send_left, n_send_left, MPI_DOUBLE, left, kTagToLeft, p + recv_right, n_recv_right, MPI_DOUBLE,
+                 right, kTagToLeft, comm, MPI_STATUS_IGNORE);
+    MPI_Sendrecv(p + send_right, n_send_right, MPI_DOUBLE, right, kTagToRight, p + recv_left, n_recv_left,
+                 MPI_DOUBLE, left, kTagToRight, comm, MPI_STATUS_IGNORE);
+    return;
+  }
+  using Flat = Kokkos::View<double*, MemSpace, Kokkos::MemoryUnmanaged>;
+  using HostFlat = Kokkos::View<double*, Kokkos::HostSpace>;
+  auto staged = [](const char* label, int n) { return HostFlat(Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string(label)), n); };
+  HostFlat out_l = staged("eulerfsi::halo::window_out_l", n_send_left), in_r = staged("eulerfsi::halo::window_in_r", n_recv_right);
+  HostFlat out_r = staged("eulerfsi::halo::window_out_r", n_send_right), in_l = staged("eulerfsi::halo::window_in_l", n_recv_left);
+  Kokkos::deep_copy(out_l, Flat(p + send_left, n_send_left));
+  Kokkos::deep_copy(out_r, Flat(p + send_right, n_send_right));
+  MPI_Sendrecv(out_l.data(), n_send_left, MPI_DOUBLE, left, kTagToLeft, in_r.data(), n_recv_right, MPI_DOUBLE, right,
+               kTagToLeft, comm, MPI_STATUS_IGNORE);
+  MPI_Sendrecv(out_r.data(), n_send_right, MPI_DOUBLE, right, kTagToRight, in_l.data(), n_recv_left, MPI_DOUBLE, left,
+               kTagToRight, comm, MPI_STATUS_IGNORE);
+  Kokkos::deep_copy(Flat(p + recv_right, n_recv_right), in_r);
+  Kokkos::deep_copy(Flat(p + recv_left, n_recv_left), in_l);
+}
+
 }  // namespace eulerfsi

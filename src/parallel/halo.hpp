@@ -3,6 +3,7 @@
 #include "parallel/mpi.hpp"
 
 #include "core/types.hpp"
+#include "core/window_field.hpp"
 #include "grid/grid.hpp"
 
 namespace eulerfsi {
@@ -16,5 +17,10 @@ namespace eulerfsi {
 // rank (and in builds without MPI) the ghosts are filled by a kernel, without MPI. Does not fence
 // at the end: later kernels on ExecSpace see the ghosts, the host must fence first.
 void exchange_x(Field3 f, const Grid& g, MPI_Comm comm);
+// The same for a field stored on a window of the slab (src/solid/solid_window.hpp): the planes of
+// the exchange that the window holds travel. Every rank's window must cut one global window (the
+// ranks then agree on what travels), and on one rank a window that holds an x-ghost plane holds
+// every x-plane.
+void exchange_x(const WindowField& f, const Grid& g, MPI_Comm comm);
 
 }  // namespace eulerfsi

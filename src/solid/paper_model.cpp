@@ -70,7 +70,7 @@ kernels::Tensor6 make_tensor(const Grid& g, const char* label) {
 }
 
 void set_identity(const kernels::Tensor6& b) {
-  for (int c = 0; c < kernels::kTensorComponents; ++c) Kokkos::deep_copy(b.c[c], c < 3 ? 1.0 : 0.0);
+  for (int c = 0; c < kernels::kTensorComponents; ++c) Kokkos::deep_copy(b.c[c].data, c < 3 ? 1.0 : 0.0);
 }
 
 PaperModel::PaperModel(const CaseConfig&, const Grid& grid, const BoundaryConditions& bc, const Comm& comm)
@@ -79,8 +79,8 @@ PaperModel::PaperModel(const CaseConfig&, const Grid& grid, const BoundaryCondit
       b_rhs_old_(make_tensor(grid, "B_rhs_old")) {}
 
 void PaperModel::set_initial_condition(SolidBody& body) {
-  fill_volume_fraction(body.psi, grid_, body.cfg, kSubsamples);
-  bc_->fill_scalar(body.psi);  // periodic images in y and z come from the ghost exchange
+  fill_volume_fraction(body.psi.data, grid_, body.cfg, kSubsamples);
+  bc_->fill_scalar(body.psi.data);  // periodic images in y and z come from the ghost exchange
   set_identity(body.b);
   set_identity(body.b_prev);
 }
@@ -89,32 +89,32 @@ void PaperModel::advance_substep(SolidBody& body, const kernels::Velocity& vel, 
   const double gamma = Rk3::gamma[substep], zeta = Rk3::zeta[substep];
   const Box box = grid_.interior();
   // d psi/dt = -div(u psi);  dB/dt = -div(u B) + L B + B L^T   (WENO5 fluxes, RK3)
-  kernels::scalar_advection_rhs(psi_rhs_, body.psi, vel, grid_.h, box);
-  kernels::tensor_transport_rhs(b_rhs_, body.b, vel, body.psi, kPsiReset, grid_.h, box);
+  kernels::scalar_advection_rhs(psi_rhs_, body.psi.data, vel, grid_.h, box);
+  kernels::tensor_transport_rhs(b_rhs_, body.b, vel, body.psi.data, kPsiReset, grid_.h, box);
   // B before the substep becomes B_prev by a swap (no copy); B is written anew from it
   std::swap(body.b, body.b_prev);
-  kernels::rk3_scalar_update(body.psi, psi_rhs_, psi_rhs_old_, dt, gamma, zeta, box);
+  kernels::rk3_scalar_update(body.psi.data, psi_rhs_, psi_rhs_old_, dt, gamma, zeta, box);
   kernels::rk3_tensor_update(body.b, body.b_prev, b_rhs_, b_rhs_old_, dt, gamma, zeta, box);
   std::swap(psi_rhs_, psi_rhs_old_);
   std::swap(b_rhs_, b_rhs_old_);
-  clip_conserving(body.psi);
-  bc_->fill_scalar(body.psi);
+  clip_conserving(body.psi.data);
+  bc_->fill_scalar(body.psi.data);
   extend_tensor(body);
   if (substep == 2 && body.cfg.sharpening > 0.0) sharpen(body);
-  for (int c = 0; c < kernels::kTensorComponents; ++c) bc_->fill_scalar(body.b.c[c]);
+  for (int c = 0; c < kernels::kTensorComponents; ++c) bc_->fill_scalar(body.b.c[c].data);
 }
 
 void PaperModel::fill_ghosts(SolidBody& body) {
-  bc_->fill_scalar(body.psi);
-  for (int c = 0; c < kernels::kTensorComponents; ++c) bc_->fill_scalar(body.b.c[c]);
+  bc_->fill_scalar(body.psi.data);
+  for (int c = 0; c < kernels::kTensorComponents; ++c) bc_->fill_scalar(body.b.c[c].data);
 }
 
 // B outside the solid: the solid's B extended over a band of kExtensionBand cells, I beyond;
 // scratch: psi_rhs, which holds nothing the next substep needs.
 void PaperModel::extend_tensor(SolidBody& body) {
   // psi's ghosts are fresh; B's are filled once (the sweeps then need no exchange)
-  for (int c = 0; c < kernels::kTensorComponents; ++c) bc_->fill_scalar(body.b.c[c]);
-  kernels::extend_tensor(body.b, psi_rhs_, body.psi, kPsiSolid, kExtensionBand, grid_.interior());
+  for (int c = 0; c < kernels::kTensorComponents; ++c) bc_->fill_scalar(body.b.c[c].data);
+  kernels::extend_tensor(body.b, psi_rhs_, body.psi.data, kPsiSolid, kExtensionBand, grid_.interior());
 }
 
 // Bounded and conservative: clip psi to [0, 1], then give the clipped volume back to the
@@ -134,10 +134,10 @@ void PaperModel::sharpen(SolidBody& body) {
   const double h = std::min(grid_.h[0], std::min(grid_.h[1], grid_.h[2]));
   // scratch: B's rhs buffers (normals and the smoothed psi), free between substeps
   const auto& n = b_rhs_;
-  kernels::sharpening_step_rhs(psi_rhs_, body.psi, n.c[3], n.c[0], n.c[1], n.c[2], kSharpenWidth * h, grid_.h, box);
-  kernels::rk3_scalar_update(body.psi, psi_rhs_, psi_rhs_, body.cfg.sharpening * h, 1.0, 0.0, box);
-  clip_conserving(body.psi);
-  bc_->fill_scalar(body.psi);
+  kernels::sharpening_step_rhs(psi_rhs_, body.psi.data, n.c[3].data, n.c[0].data, n.c[1].data, n.c[2].data, kSharpenWidth * h, grid_.h, box);
+  kernels::rk3_scalar_update(body.psi.data, psi_rhs_, psi_rhs_, body.cfg.sharpening * h, 1.0, 0.0, box);
+  clip_conserving(body.psi.data);
+  bc_->fill_scalar(body.psi.data);
 }
 
 }  // namespace eulerfsi

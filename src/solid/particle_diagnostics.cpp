@@ -106,7 +106,7 @@ void ParticleTracker::sharp_shape_moments(const SolidBody& body, const double re
   const kernels::CellCentres xc{{grid_.centre(0, 0), grid_.centre(1, 0), grid_.centre(2, 0)},
                                 {grid_.h[0], grid_.h[1], grid_.h[2]}};
   const double w1 = body.model->edge_half_width_cells(), w2 = kNarrowEdgeFraction * w1;
-  const Field3 fields[2] = {body.psi, body.model->psi_at_half_width(body, w2)};
+  const WindowField fields[2] = {body.psi, body.model->psi_at_half_width(body, w2)};
   double mom[2][10];
   for (int f = 0; f < 2; ++f) {
     auto second = kernels::body_second_moments(fields[f], xc, ref, period, box, 0.0);

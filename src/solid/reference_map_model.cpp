@@ -34,6 +34,10 @@ constexpr double kSolidMarginCells = 0.5;
 // over 3 cells.
 constexpr double kHalfWidthCells = 1.5;
 
+// The widest read around a cell of the active box: WENO5's three cells and the central
+// differences one beyond (the window holds the active box grown by it).
+constexpr int kReach = kGhost + 1;
+
 // Newton steps on the level shift at t = 0 (each divides the volume error by ~30).
 constexpr int kInitialVolumeIterations = 6;
 
@@ -49,18 +53,11 @@ void copy_tensor(const kernels::Tensor6& dst, const kernels::Tensor6& src, const
   });
 }
 
-kernels::Vector3 make_vector(const Grid& g, const char* label) {
-  kernels::Vector3 v;
-  for (int a = 0; a < 3; ++a) v.c[a] = g.make_field(label);
-  return v;
-}
-
 }  // namespace
 
 ReferenceMapModel::ReferenceMapModel(const SolidConfig& solid, const CaseConfig& cfg, const Grid& grid,
                                      const BoundaryConditions& bc, const Comm& comm)
-    : grid_(grid), bc_(&bc), comm_(comm), q_(make_vector(grid, "xi_minus_x")), rhs_(make_vector(grid, "xi_rhs")),
-      rhs_old_(make_vector(grid, "xi_rhs_old")), level_(grid.make_field("xi_level")) {
+    : cfg_solid_(solid), grid_(grid), bc_(&bc), comm_(comm), window_(grid, comm) {
   shape_.sphere = solid.shape == SolidShape::Sphere;
   for (int a = 0; a < 3; ++a) shape_.centre[a] = solid.center[a];
   shape_.radius = 0.5 * solid.diameter;
@@ -72,15 +69,89 @@ ReferenceMapModel::ReferenceMapModel(const SolidConfig& solid, const CaseConfig&
   }
 }
 
+// Every field of the body and of the model, with its value outside the window (B = I; the map
+// unknown, level 0; everything else 0).
+std::vector<SolidWindow::Member> ReferenceMapModel::window_members(SolidBody& body) {
+  std::vector<SolidWindow::Member> m = {{&body.psi, 0.0, "psi"}, {&level_, 0.0, "xi_level"}};
+  for (int c = 0; c < kernels::kTensorComponents; ++c) {
+    const double identity = c < 3 ? 1.0 : 0.0;
+    m.push_back({&body.b.c[c], identity, "B"});
+    m.push_back({&body.b_prev.c[c], identity, "B_prev"});
+  }
+  for (int a = 0; a < 3; ++a) {
+    m.push_back({&q_.c[a], 0.0, "xi_minus_x"});
+    m.push_back({&rhs_.c[a], 0.0, "xi_rhs"});
+    m.push_back({&rhs_old_.c[a], 0.0, "xi_rhs_old"});
+  }
+  if (psi_other_width_.allocated()) m.push_back({&psi_other_width_, 0.0, "psi_other_width"});
+  return m;
+}
+
+// The cells a sphere's fields need at its initial position (storage indices of this rank's
+// numbering, possibly beyond the slab): its bounding box grown by the band, the active box's
+// margin and the reach.
+Box ReferenceMapModel::sphere_need(const SolidConfig& s, const Grid& g) {
+  const int margin = kBand + 2 + kReach + 1;
+  Box b;
+  for (int d = 0; d < 3; ++d) {
+    const double x0 = g.centre(d, 0), r = 0.5 * s.diameter;
+    b.lo[d] = int(std::floor((s.center[d] - r - x0) / g.h[d])) - margin;
+    b.hi[d] = int(std::ceil((s.center[d] + r - x0) / g.h[d])) + 1 + margin;
+  }
+  return b;
+}
+
+// The layer (and the whole-slab reference path) needs everything.
+Box ReferenceMapModel::initial_window_need() const {
+  const Box all = grid_.all();
+  if (shape_.sphere && !whole_slab_) return sphere_need(cfg_solid_, grid_);
+  return Box{{-kGhost, -kGhost, -kGhost}, {all.hi[0] + kGhost, all.hi[1] + kGhost, all.hi[2] + kGhost}};
+}
+
+double ReferenceMapModel::window_cells(const SolidConfig& s, const Grid& g, bool x_whole) {
+  if (s.shape != SolidShape::Sphere) return double(g.all().size());
+  Box need = sphere_need(s, g);
+  need.lo[0] += g.x_offset;
+  need.hi[0] += g.x_offset;
+  Box w = SolidWindow::placement(g, need);
+  if (x_whole) {
+    w.lo[0] = 0;
+    w.hi[0] = g.n[0] + 2 * kGhost;
+  }
+  return double(SolidWindow::local_part(g, w).size());
+}
+
+void ReferenceMapModel::allocate(SolidBody& body, const Grid&) {
+  const auto members = window_members(body);
+  if (whole_slab_) {
+    window_.hold_whole_slab(members);
+  } else {
+    window_.hold(initial_window_need(), members);
+  }
+}
+
+void ReferenceMapModel::use_whole_slab(bool on, SolidBody& body) {
+  whole_slab_ = on;
+  if (on) window_.hold_whole_slab(window_members(body));
+  update_active_box(body);
+}
+
 void ReferenceMapModel::set_initial_condition(SolidBody& body) {
-  for (int a = 0; a < 3; ++a) Kokkos::deep_copy(q_.c[a], 0.0);
-  for (int a = 0; a < 3; ++a) Kokkos::deep_copy(rhs_old_.c[a], 0.0);
+  allocate(body, grid_);
+  for (int a = 0; a < 3; ++a) Kokkos::deep_copy(q_.c[a].data, 0.0);
+  for (int a = 0; a < 3; ++a) Kokkos::deep_copy(rhs_old_.c[a].data, 0.0);
   set_identity(body.b);
-  Kokkos::deep_copy(body.psi, 0.0);
+  Kokkos::deep_copy(body.psi.data, 0.0);
   shape_.shift = 0.0;
-  const Box box = grid_.interior();
+  // the owned cells whose stencils the window holds (all of them on a whole direction)
+  Box reach = window_.local();
+  for (int d = 0; d < 3; ++d) {
+    if (reach.lo[d] > 0) reach.lo[d] += kReach;
+    if (reach.hi[d] < grid_.all().hi[d]) reach.hi[d] -= kReach;
+  }
+  const Box box = intersection(grid_.interior(), reach);
   kernels::classify_solid(level_, q_, shape_, centres_, kSolidReach, solid_margin(), true, grid_.h, box);
-  fill_level(grid_.interior());
+  fill_level(box);
   active_ = box;
   extrapolate(box);
   // the smoothed edge adds 8 pi R int_0^eps (1 - H) s ds... = 5.5 % of a sphere 8 cells across:
@@ -88,14 +159,14 @@ void ReferenceMapModel::set_initial_condition(SolidBody& body) {
   volume0_ = exact_volume(body.cfg, grid_);
   derive_solid(body, box);
   for (int it = 0; it < kInitialVolumeIterations; ++it) correct_volume(body, box);
-  for (int c = 0; c < kernels::kTensorComponents; ++c) Kokkos::deep_copy(body.b_prev.c[c], body.b.c[c]);
-  update_active_box();
+  for (int c = 0; c < kernels::kTensorComponents; ++c) Kokkos::deep_copy(body.b_prev.c[c].data, body.b.c[c].data);
+  update_active_box(body);
 }
 
 double ReferenceMapModel::edge_half_width_cells() const { return kHalfWidthCells; }
 
-Field3 ReferenceMapModel::psi_at_half_width(const SolidBody&, double width_cells) {
-  if (psi_other_width_.extent(0) == 0) psi_other_width_ = grid_.make_field("psi_other_width");
+WindowField ReferenceMapModel::psi_at_half_width(const SolidBody&, double width_cells) {
+  if (!psi_other_width_.allocated()) psi_other_width_ = window_.make_field("psi_other_width", 0.0);
   kernels::psi_from_map(psi_other_width_, q_, level_, shape_, centres_, width_cells, kMaxDerivedLevel, grid_.h, active_);
   return psi_other_width_;
 }
@@ -120,7 +191,7 @@ void ReferenceMapModel::advance_substep(SolidBody& body, const kernels::Velocity
   copy_tensor(body.b_prev, body.b, box.grown(kGhost, grid_.all()));
   derive_solid(body, box);
   correct_volume(body, box);
-  update_active_box();
+  update_active_box(body);
 }
 
 // One Newton step on V(shift) = V0 with dV/dshift = the surface area; psi derived again (B, from
@@ -153,9 +224,9 @@ void ReferenceMapModel::derive_solid(SolidBody& body, const Box& region) {
 }
 
 // The known cells move less than a cell per substep: their new bounding box is searched within
-// the old active box grown by the ghost width, ghosts included.
-void ReferenceMapModel::update_active_box() {
-  const Box all = grid_.all(), interior = grid_.interior();
+// the old active box grown by the ghost width, ghosts included; the window then follows.
+void ReferenceMapModel::update_active_box(SolidBody& body) {
+  const Box all = window_.local(), interior = grid_.interior();
   if (whole_slab_) {
     active_ = interior;
     return;
@@ -173,18 +244,19 @@ void ReferenceMapModel::update_active_box() {
   // end, so the cells there are classified and extrapolated before the cells next to the end read
   // them (without this, a band that first reaches x = Lx reads stale q across it and blows up).
   Box ghosts[2] = {all, all}, seen;
-  ghosts[0].hi[0] = interior.lo[0];
-  ghosts[1].lo[0] = interior.hi[0];
+  ghosts[0].hi[0] = std::min(all.hi[0], interior.lo[0]);
+  ghosts[1].lo[0] = std::max(all.lo[0], interior.hi[0]);
   for (const Box& g : ghosts)
-    if (kernels::known_bounding_box(level_, g, seen)) {
+    if (!g.empty() && kernels::known_bounding_box(level_, g, seen)) {
       known = any ? bounding_box(known, seen) : seen;
       any = true;
     }
   if (!any) {
     active_ = Box{{interior.lo[0], interior.lo[1], interior.lo[2]}, {interior.lo[0], interior.lo[1], interior.lo[2]}};
-    return;
+  } else {
+    active_ = known.grown(2, interior);
   }
-  active_ = known.grown(2, interior);
+  window_.hold(active_.grown(kReach, grid_.all()), window_members(body));
 }
 
 // Periodic directions and ranks by the halo exchange (q is periodic); walls by linear extrapolation.
@@ -193,18 +265,22 @@ void ReferenceMapModel::update_active_box() {
 void ReferenceMapModel::fill_map_ghosts(const Box& changed_box) {
   const Box changed = whole_slab_ ? Box{{0, 0, 0}, {0, 0, 0}} : changed_box;  // empty: everywhere
   for (int a = 0; a < 3; ++a) fill(q_.c[a], changed);
-  const Box planes = wall_ghost_planes(changed);
-  for (int d = 1; d < 3; ++d)
-    if (near_wall(changed, d)) kernels::extrapolate_wall_ghosts(q_, d, grid_.n[d], planes);
+  const Box planes = intersection(wall_ghost_planes(changed), window_.local());
+  for (int d = 1; d < 3; ++d) {
+    const bool low = near_wall(changed, d, false), high = near_wall(changed, d, true);
+    if (low || high) kernels::extrapolate_wall_ghosts(q_, d, grid_.n[d], planes, low, high);
+  }
 }
 
 // Ghosts of the level: exchanged like any field, but unknown at a wall (kernels::clear_wall_ghosts).
 void ReferenceMapModel::fill_level(const Box& changed_box) {
   const Box changed = whole_slab_ ? Box{{0, 0, 0}, {0, 0, 0}} : changed_box;
   fill(level_, changed);
-  const Box planes = wall_ghost_planes(changed);
-  for (int d = 1; d < 3; ++d)
-    if (near_wall(changed, d)) kernels::clear_wall_ghosts(level_, d, grid_.n[d], planes);
+  const Box planes = intersection(wall_ghost_planes(changed), window_.local());
+  for (int d = 1; d < 3; ++d) {
+    const bool low = near_wall(changed, d, false), high = near_wall(changed, d, true);
+    if (low || high) kernels::clear_wall_ghosts(level_, d, grid_.n[d], planes, low, high);
+  }
 }
 
 // The x-planes whose wall ghosts a change on `changed` (empty: everywhere) can reach: its own,
@@ -217,25 +293,25 @@ Box ReferenceMapModel::wall_ghost_planes(const Box& changed) const {
   return planes;
 }
 
-// Whether direction d has walls that a change on `changed` comes within two cells of (the wall
-// ghosts read the first two owned cells).
-bool ReferenceMapModel::near_wall(const Box& changed, int d) const {
+// Whether direction d has a wall on the low (high) side that a change on `changed` (empty:
+// everywhere) comes within two cells of (the wall ghosts read the first two owned cells); a wall
+// whose ghosts the window does not hold is farther than that from every cell it holds.
+bool ReferenceMapModel::near_wall(const Box& changed, int d, bool high) const {
   if (grid_.bc[d] != Boundary::Wall) return false;
-  return changed.empty() || changed.lo[d] < kGhost + 2 || changed.hi[d] > kGhost + grid_.n[d] - 2;
+  const Box w = window_.local();
+  if (high ? w.hi[d] != grid_.all().hi[d] : w.lo[d] != 0) return false;
+  if (changed.empty()) return true;
+  return high ? changed.hi[d] > kGhost + grid_.n[d] - 2 : changed.lo[d] < kGhost + 2;
 }
 
 // Ghosts of a field that changed only on `changed` (all of them on the whole-slab path, which
 // the box path is tested against).
-void ReferenceMapModel::fill(const Field3& f, const Box& changed) const {
-  if (whole_slab_) {
-    bc_->fill_scalar(f);
-  } else {
-    bc_->fill_scalar(f, changed);
-  }
+void ReferenceMapModel::fill(const WindowField& f, const Box& changed) const {
+  bc_->fill_scalar(f, whole_slab_ ? Box{{0, 0, 0}, {0, 0, 0}} : changed);
 }
 
-std::vector<std::pair<std::string, Field3>> ReferenceMapModel::checkpoint_fields() {
-  return {{"xi_qx", q_.c[0]}, {"xi_qy", q_.c[1]}, {"xi_qz", q_.c[2]}, {"xi_level", level_}};
+std::vector<SolidModel::StoredField> ReferenceMapModel::checkpoint_fields() {
+  return {{"xi_qx", &q_.c[0], 0.0}, {"xi_qy", &q_.c[1], 0.0}, {"xi_qz", &q_.c[2], 0.0}, {"xi_level", &level_, 0.0}};
 }
 
 std::map<std::string, double> ReferenceMapModel::checkpoint_scalars() const {
@@ -247,13 +323,29 @@ void ReferenceMapModel::restore_scalars(const std::map<std::string, double>& s) 
   if (s.count("refmap.volume0")) volume0_ = s.at("refmap.volume0");
 }
 
+// After a restore psi, B, q and the level are on the whole slab (a checkpoint stores them so):
+// their ghosts are filled there, the body is found on the whole slab, and every field then moves
+// onto the window around it.
 void ReferenceMapModel::fill_ghosts(SolidBody& body) {
-  fill_map_ghosts(grid_.interior());
-  active_ = grid_.interior();  // searched again from the whole slab after a restore
-  fill_level(grid_.interior());
-  bc_->fill_scalar(body.psi);
-  for (int c = 0; c < kernels::kTensorComponents; ++c) bc_->fill_scalar(body.b.c[c]);
-  update_active_box();
+  const Box all = grid_.all(), interior = grid_.interior(), everywhere{{0, 0, 0}, {0, 0, 0}};
+  for (int a = 0; a < 3; ++a) bc_->fill_scalar(q_.c[a], everywhere);
+  bc_->fill_scalar(level_, everywhere);
+  for (int d = 1; d < 3; ++d)
+    if (grid_.bc[d] == Boundary::Wall) {
+      kernels::extrapolate_wall_ghosts(q_, d, grid_.n[d], all);
+      kernels::clear_wall_ghosts(level_, d, grid_.n[d], all);
+    }
+  bc_->fill_scalar(body.psi.data);
+  for (int c = 0; c < kernels::kTensorComponents; ++c) bc_->fill_scalar(body.b.c[c].data);
+  Box known;
+  active_ = kernels::known_bounding_box(level_, all, known) ? known.grown(2, interior)
+                                                             : Box{{kGhost, kGhost, kGhost}, {kGhost, kGhost, kGhost}};
+  if (whole_slab_) {
+    window_.hold_whole_slab(window_members(body));
+    active_ = interior;
+  } else {
+    window_.hold(active_.grown(kReach, all), window_members(body), true);
+  }
 }
 
 }  // namespace eulerfsi

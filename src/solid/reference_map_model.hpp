@@ -10,8 +10,13 @@
 // keep it there (one Newton step per substep on V(shift) with dV/dshift = surface area); the
 // shift is checkpointed.
 // Shapes: the sphere and the layer (any geometry; q is periodic wherever the domain is).
+// Storage: every field of the body (psi, B, B_prev, q, its RK3 memory and level) lives on a window
+// that follows the body (src/solid/solid_window.hpp), so its memory follows the body's size.
+#include <vector>
+
 #include "kernels/reference_map.hpp"
 #include "solid/solid_model.hpp"
+#include "solid/solid_window.hpp"
 
 namespace eulerfsi {
 
@@ -19,22 +24,27 @@ class ReferenceMapModel final : public SolidModel {
  public:
   ReferenceMapModel(const SolidConfig& solid, const CaseConfig& cfg, const Grid& grid, const BoundaryConditions& bc,
                     const Comm& comm);
+  void allocate(SolidBody& body, const Grid& grid) override;
   void set_initial_condition(SolidBody& body) override;
   void advance_substep(SolidBody& body, const kernels::Velocity& vel, double dt, int substep) override;
-  std::vector<std::pair<std::string, Field3>> checkpoint_fields() override;
+  std::vector<StoredField> checkpoint_fields() override;
   std::map<std::string, double> checkpoint_scalars() const override;
   void restore_scalars(const std::map<std::string, double>& s) override;
   void fill_ghosts(SolidBody& body) override;
   Box active_box() const override { return active_; }
   double edge_half_width_cells() const override;
-  Field3 psi_at_half_width(const SolidBody& body, double width_cells) override;
+  WindowField psi_at_half_width(const SolidBody& body, double width_cells) override;
 
-  // Every kernel on the whole slab instead of the active box: the reference the box is tested
-  // against (tests/mpi/test_active_box.cpp); the results agree to round-off.
-  void use_whole_slab(bool on) {
-    whole_slab_ = on;
-    update_active_box();
-  }
+  // Every kernel on the whole slab instead of the active box, every field on the whole slab
+  // instead of the window: the reference the box is tested against (tests/mpi/test_active_box.cpp);
+  // the results agree to round-off.
+  void use_whole_slab(bool on, SolidBody& body);
+  // Cells of this rank's window for a body at its initial position (x_whole: every x-plane, for a
+  // body that crosses the periodic end): what the memory estimate counts.
+  static double window_cells(const SolidConfig& s, const Grid& g, bool x_whole);
+  // This rank's cells of the window the body's fields are stored on.
+  Box window() const { return window_.local(); }
+  int window_moves() const { return window_.moves(); }
 
   // The level shift that keeps the volume (0 without drift).
   double level_shift() const { return shape_.shift; }
@@ -43,26 +53,31 @@ class ReferenceMapModel final : public SolidModel {
   void fill_map_ghosts(const Box& changed);
   void fill_level(const Box& changed);
   Box wall_ghost_planes(const Box& changed) const;
-  bool near_wall(const Box& changed, int d) const;
-  void fill(const Field3& f, const Box& changed) const;
+  bool near_wall(const Box& changed, int d, bool high) const;
+  void fill(const WindowField& f, const Box& changed) const;
   void extrapolate(const Box& region);
   double solid_margin() const;
   void derive_solid(SolidBody& body, const Box& region);
-  void update_active_box();
+  void update_active_box(SolidBody& body);
+  std::vector<SolidWindow::Member> window_members(SolidBody& body);
+  Box initial_window_need() const;
+  static Box sphere_need(const SolidConfig& s, const Grid& g);
   void correct_volume(SolidBody& body, const Box& region);
 
+  SolidConfig cfg_solid_;
   Grid grid_;
   const BoundaryConditions* bc_;
   Comm comm_;
   kernels::ReferenceShape shape_;
   kernels::CellCentres centres_;
   kernels::Vector3 q_, rhs_, rhs_old_;
-  Field3 level_;
-  Field3 psi_other_width_;  // the diagnostics' second psi, allocated on first use
+  WindowField level_;
+  WindowField psi_other_width_;  // the diagnostics' second psi, allocated on first use
   // The owned cells within reach of the body: the bounding box of the known cells (ghosts
   // included, so a body about to cross into this rank's slab is seen) grown by two cells. Every
   // kernel runs on it; outside it q is not used, psi = 0 and B = I.
   Box active_;
+  SolidWindow window_;
   double volume0_ = 0.0;
   bool whole_slab_ = false;
 };

@@ -44,8 +44,9 @@ std::vector<ContourSegment> contour_segments(const std::vector<double>& f, int n
 
 namespace {
 
-// Trilinear interpolation of a cell-centred field at (x, y, z) if this rank owns x, else 0.
-double sample_owned(const HostField3& f, const Grid& g, double x, double y, double z) {
+// Trilinear interpolation of a cell-centred field at (x, y, z) if this rank owns x, else 0; f holds
+// the cells of a window starting at storage index `origin` (0 outside it).
+double sample_owned(const HostField3& f, const int origin[3], const Grid& g, double x, double y, double z) {
   const double lo = g.x_offset * g.h[0], hi = (g.x_offset + g.nx_local) * g.h[0];
   if (x < lo || x >= hi) return 0.0;
   const double p[3] = {(x - lo) / g.h[0] - 0.5, (y - g.domain_lo(1)) / g.h[1] - 0.5, (z - g.domain_lo(2)) / g.h[2] - 0.5};
@@ -59,8 +60,11 @@ double sample_owned(const HostField3& f, const Grid& g, double x, double y, doub
   double v = 0.0;
   for (int a = 0; a < 2; ++a)
     for (int b = 0; b < 2; ++b)
-      for (int c = 0; c < 2; ++c)
-        v += (a ? w[0] : 1 - w[0]) * (b ? w[1] : 1 - w[1]) * (c ? w[2] : 1 - w[2]) * f(i0[0] + a, i0[1] + b, i0[2] + c);
+      for (int c = 0; c < 2; ++c) {
+        const int i = i0[0] + a - origin[0], j = i0[1] + b - origin[1], k = i0[2] + c - origin[2];
+        const bool held = i >= 0 && j >= 0 && k >= 0 && i < int(f.extent(0)) && j < int(f.extent(1)) && k < int(f.extent(2));
+        v += (a ? w[0] : 1 - w[0]) * (b ? w[1] : 1 - w[1]) * (c ? w[2] : 1 - w[2]) * (held ? f(i, j, k) : 0.0);
+      }
   return v;
 }
 
@@ -82,7 +86,7 @@ void write_shape_sections(const std::string& path, const Grid& g, MPI_Comm comm,
   for (size_t n = 0; n < solids.bodies().size(); ++n) {
     const auto& body = solids.bodies()[n];
     const ParticleState& st = states[n];
-    auto psi = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), body.psi);
+    auto psi = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), body.psi.data);
     const double reach = 1.5 * (body.cfg.shape == SolidShape::Sphere ? body.cfg.diameter : body.cfg.thickness);
     const int nx = 2 * int(reach / ds) + 1, ns = nx;
     const double r_c = st.centre[1] * st.radial_dir[1] + st.centre[2] * st.radial_dir[2];
@@ -94,7 +98,7 @@ void write_shape_sections(const std::string& path, const Grid& g, MPI_Comm comm,
         if (x < 0) x += lx;
         const double y = s * st.radial_dir[1], z = s * st.radial_dir[2];
         if (std::fabs(y) > 0.5 * g.length[1] - 0.5 * g.h[1] || std::fabs(z) > 0.5 * g.length[2] - 0.5 * g.h[2]) continue;
-        local[size_t(a) * ns + b] = sample_owned(psi, g, x, y, z);
+        local[size_t(a) * ns + b] = sample_owned(psi, body.psi.lo, g, x, y, z);
       }
     MPI_Reduce(local.data(), global.data(), int(local.size()), MPI_DOUBLE, MPI_SUM, 0, comm);
     if (rank != 0) continue;

@@ -17,7 +17,7 @@ struct SolidBody {
   SolidConfig cfg;
   double G = 1.0;      // shear modulus 1/We
   double mu_s = 0.0;   // solid viscosity (viscosity_ratio / Re)
-  Field3 psi;          // volume fraction
+  WindowField psi;     // volume fraction (on the body's window, src/solid/solid_window.hpp)
   kernels::Tensor6 b;        // B at the current substep
   kernels::Tensor6 b_prev;   // B before the latest update (Crank-Nicolson average with b)
   std::shared_ptr<SolidModel> model;  // how psi and B are carried (paper or reference map)

@@ -5,6 +5,12 @@
 
 namespace eulerfsi {
 
+void SolidModel::allocate(SolidBody& body, const Grid& grid) {
+  body.psi = grid.make_field("psi");
+  body.b = make_tensor(grid, "B");
+  body.b_prev = make_tensor(grid, "B_prev");
+}
+
 std::shared_ptr<SolidModel> make_solid_model(const SolidConfig& solid, const CaseConfig& cfg, const Grid& grid,
                                              const BoundaryConditions& bc, const Comm& comm) {
   switch (solid.model) {

@@ -27,16 +27,27 @@ namespace eulerfsi {
 class SolidModel {
  public:
   virtual ~SolidModel() = default;
+  // The body's psi, B and B_prev: on the whole slab here; a model that knows where its body is
+  // stores them on a window that follows it (src/solid/solid_window.hpp).
+  virtual void allocate(SolidBody& body, const Grid& grid);
   // psi of the initial shape and B = I, ghosts filled.
   virtual void set_initial_condition(SolidBody& body) = 0;
   // One RK3 substep: b_prev <- B, then psi and B advanced with vel; ghosts filled on return.
   virtual void advance_substep(SolidBody& body, const kernels::Velocity& vel, double dt, int substep) = 0;
-  // Fields a checkpoint stores besides psi and B, under names unique within the body.
-  virtual std::vector<std::pair<std::string, Field3>> checkpoint_fields() { return {}; }
+  // A field a checkpoint stores: its name, where it lives, its value outside its window.
+  struct StoredField {
+    std::string name;
+    WindowField* field;
+    double outside;
+  };
+  // Fields a checkpoint stores besides psi and B, under names unique within the body. After a
+  // read they may hold the whole slab: fill_ghosts() takes them from there.
+  virtual std::vector<StoredField> checkpoint_fields() { return {}; }
   // Scalars a checkpoint stores (e.g. a volume correction), and their restoration.
   virtual std::map<std::string, double> checkpoint_scalars() const { return {}; }
   virtual void restore_scalars(const std::map<std::string, double>&) {}
-  // After a checkpoint was read: ghosts of everything the model holds.
+  // After a checkpoint was read: ghosts of everything the model holds (psi, B and the stored
+  // fields may then be on the whole slab).
   virtual void fill_ghosts(SolidBody& body) = 0;
   // Owned cells (storage indices) outside which psi = 0 and B = I exactly, now and after the
   // next substep's update: the shared solid kernels (mixture viscosity, elastic force,
@@ -47,7 +58,7 @@ class SolidModel {
   // shape moments to zero width; valid on active_box() (outside it the field is stale). 0 and an
   // empty field where psi is transported (the paper model).
   virtual double edge_half_width_cells() const { return 0.0; }
-  virtual Field3 psi_at_half_width(const SolidBody&, double /*width_cells*/) { return Field3(); }
+  virtual WindowField psi_at_half_width(const SolidBody&, double /*width_cells*/) { return WindowField(); }
 };
 
 std::shared_ptr<SolidModel> make_solid_model(const SolidConfig& solid, const CaseConfig& cfg, const Grid& grid,

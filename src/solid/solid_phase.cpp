@@ -17,10 +17,8 @@ SolidPhase::SolidPhase(const CaseConfig& cfg, const Grid& grid, const BoundaryCo
     body.cfg = s;
     body.G = 1.0 / s.We;
     body.mu_s = s.viscosity_ratio / cfg.flow.Re;
-    body.psi = grid.make_field("psi");
-    body.b = make_tensor(grid, "B");
-    body.b_prev = make_tensor(grid, "B_prev");
     body.model = make_solid_model(s, cfg, grid, bc, comm);
+    body.model->allocate(body, grid);
     bodies_.push_back(std::move(body));
   }
 }
@@ -32,12 +30,16 @@ void SolidPhase::set_initial_condition() {
 void SolidPhase::stop_bodies_at_rest(const kernels::Velocity& vel) const {
   for (const auto& body : bodies_) {
     if (body.cfg.initial_velocity != InitialSolidVelocity::Rest) continue;
-    const Field3 psi = body.psi;
+    const WindowField psi = body.psi;
+    // faces whose two cells the window holds (psi = 0 on the window's outer cells)
+    Box faces = body.psi.window();
+    for (int d = 0; d < 3; ++d) faces.hi[d] -= 1;
+    faces = intersection(faces, grid_.interior());
     for (int c = 0; c < 3; ++c) {
       const Field3 u = vel.c[c];
       const int di = c == 0, dj = c == 1, dk = c == 2;
       // the face lies between cell (i,j,k) and the next one along c
-      for_each_cell("eulerfsi::solid::stop_at_rest", grid_.interior(), KOKKOS_LAMBDA(int i, int j, int k) {
+      for_each_cell("eulerfsi::solid::stop_at_rest", faces, KOKKOS_LAMBDA(int i, int j, int k) {
         u(i, j, k) *= 1.0 - 0.5 * (psi(i, j, k) + psi(i + di, j + dj, k + dk));
       });
     }
@@ -46,7 +48,7 @@ void SolidPhase::stop_bodies_at_rest(const kernels::Velocity& vel) const {
 
 void SolidPhase::total_volume_fraction(const Field3& out) const {
   Kokkos::deep_copy(out, 0.0);
-  for (const auto& body : bodies_) kernels::mixture_viscosity_add(out, body.psi, 1.0, grid_.all());
+  for (const auto& body : bodies_) kernels::mixture_viscosity_add(out, body.psi, 1.0, body.psi.window());
 }
 
 void SolidPhase::elastic_energy_density(const Field3& out) const {
@@ -71,7 +73,8 @@ void SolidPhase::mixture_viscosity(const Field3& mu, double mu_fluid, double bac
   kernels::fill_box(mu, background, mu_region_);
   mu_region_ = active_box().grown(kGhost, grid_.all());
   kernels::fill_box(mu, background, mu_region_);
-  for (const auto& body : bodies_) kernels::mixture_viscosity_add(mu, body.psi, body.mu_s - mu_fluid, mu_region_);
+  for (const auto& body : bodies_)
+    kernels::mixture_viscosity_add(mu, body.psi, body.mu_s - mu_fluid, intersection(mu_region_, body.psi.window()));
 }
 
 // The force on a face reads psi one cell beyond it: the body's active box grown by one.
@@ -89,17 +92,37 @@ double SolidPhase::max_wave_speed() const {
   return c;
 }
 
-std::vector<std::pair<std::string, Field3>> SolidPhase::checkpoint_fields() {
+// psi, B and the model's stored fields of every body, named "solid<n>_<name>".
+std::vector<std::pair<std::string, SolidModel::StoredField>> SolidPhase::stored_fields() {
   static const char* comp[6] = {"xx", "yy", "zz", "xy", "xz", "yz"};
-  std::vector<std::pair<std::string, Field3>> f;
+  std::vector<std::pair<std::string, SolidModel::StoredField>> f;
   for (size_t n = 0; n < bodies_.size(); ++n) {
     auto& body = bodies_[n];
-    const std::string tag = "solid" + std::to_string(n);
-    f.emplace_back(tag + "_psi", body.psi);
-    for (int c = 0; c < 6; ++c) f.emplace_back(tag + "_B" + comp[c], body.b.c[c]);
-    for (auto& [name, field] : body.model->checkpoint_fields()) f.emplace_back(tag + "_" + name, field);
+    const std::string tag = "solid" + std::to_string(n) + "_";
+    f.push_back({tag + "psi", {"psi", &body.psi, 0.0}});
+    for (int c = 0; c < 6; ++c) f.push_back({tag + "B" + comp[c], {"B", &body.b.c[c], c < 3 ? 1.0 : 0.0}});
+    for (const auto& s : body.model->checkpoint_fields()) f.push_back({tag + s.name, s});
   }
   return f;
+}
+
+std::vector<CheckpointSource> SolidPhase::checkpoint_sources() {
+  std::vector<CheckpointSource> out;
+  for (const auto& [name, s] : stored_fields()) out.push_back({name, *s.field, s.outside});
+  return out;
+}
+
+// Fresh whole-slab fields to read into (a refused read leaves the bodies as they were); restore()
+// hands them to the bodies.
+std::vector<std::pair<std::string, Field3>> SolidPhase::checkpoint_fields() {
+  std::vector<std::pair<std::string, Field3>> out;
+  staged_.clear();
+  for (const auto& [name, s] : stored_fields()) {
+    const Field3 whole = grid_.make_field(s.field->data.label().c_str());
+    staged_.push_back({s.field, whole});
+    out.emplace_back(name, whole);
+  }
+  return out;
 }
 
 std::vector<std::pair<std::string, double>> SolidPhase::checkpoint_scalars() const {
@@ -111,6 +134,10 @@ std::vector<std::pair<std::string, double>> SolidPhase::checkpoint_scalars() con
 }
 
 void SolidPhase::restore(const std::vector<std::pair<std::string, double>>& scalars) {
+  // the fields read into whole-slab copies become the bodies' (their models move them back onto
+  // their windows in fill_ghosts)
+  for (auto& [field, copy] : staged_) *field = WindowField(copy);
+  staged_.clear();
   for (size_t n = 0; n < bodies_.size(); ++n) {
     const std::string tag = "solid" + std::to_string(n) + ".";
     std::map<std::string, double> mine;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "config/case_config.hpp"
+#include "io/checkpoint.hpp"
 #include "grid/grid.hpp"
 #include "kernels/momentum.hpp"
 #include "parallel/comm.hpp"
@@ -43,7 +44,10 @@ class SolidPhase final : public SolidCoupling {
   void add_elastic_force(const kernels::Velocity& rhs) const override;
   double max_wave_speed() const override;
 
-  // Every field a step starts from, "solid<n>_<name>": psi, B and whatever the model adds.
+  // Every field a step starts from, "solid<n>_<name>": psi, B and whatever the model adds, as they
+  // are stored (a window, and its value outside) for writing; as fresh whole-slab fields to read
+  // a checkpoint into, which restore() then hands to the bodies.
+  std::vector<CheckpointSource> checkpoint_sources();
   std::vector<std::pair<std::string, Field3>> checkpoint_fields();
   // Model scalars, "solid<n>.<name>", and their restoration after a checkpoint was read.
   std::vector<std::pair<std::string, double>> checkpoint_scalars() const;
@@ -54,7 +58,10 @@ class SolidPhase final : public SolidCoupling {
   Grid grid_;
   Comm comm_;
   std::vector<SolidBody> bodies_;
+  std::vector<std::pair<std::string, SolidModel::StoredField>> stored_fields();
+
   Box mu_region_{{0, 0, 0}, {0, 0, 0}};  // where mixture_viscosity() last wrote
+  std::vector<std::pair<WindowField*, Field3>> staged_;  // fields a checkpoint is read into
 };
 
 // The state a run starts from: the flow's initial condition, the bodies' shapes with B = I, zero

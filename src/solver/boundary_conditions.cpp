@@ -1,5 +1,6 @@
 #include "solver/boundary_conditions.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "kernels/boundary.hpp"
@@ -66,6 +67,34 @@ void BoundaryConditions::fill_scalar(const Field3& f, const Box& changed) const 
     if (!near) continue;
     const GhostRule rule = grid_.bc[dir] == Boundary::Periodic ? GhostRule::Periodic : GhostRule::Even;
     kernels::fill_ghosts(f, dir, grid_.n[dir], rule, 0.0, 0.0, x_lo, x_hi);
+  }
+}
+
+void BoundaryConditions::fill_scalar(const WindowField& f, const Box& changed) const {
+  const Box w = f.window(), all = grid_.all();
+  auto whole_along = [&](int d) { return w.lo[d] == all.lo[d] && w.hi[d] == all.hi[d]; };
+  if (whole_along(0) && whole_along(1) && whole_along(2)) {
+    fill_scalar(f.data, changed);
+    return;
+  }
+  exchange_x(f, grid_, comm_);
+  const int x_end = kGhost + grid_.nx_local;
+  const bool x_edge = changed.empty() || changed.lo[0] < 2 * kGhost || changed.hi[0] > x_end - kGhost;
+  const int x_lo = x_edge ? w.lo[0] : std::max(changed.lo[0], w.lo[0]);
+  const int x_hi = x_edge ? w.hi[0] : std::min(changed.hi[0], w.hi[0]);
+  for (int dir = 1; dir <= 2; ++dir) {
+    // the window holds the ghosts of a side only where it reaches them (src/solid/solid_window.hpp)
+    const bool low = w.lo[dir] == 0, high = w.hi[dir] == all.hi[dir];
+    const bool near_low = changed.empty() || changed.lo[dir] < 2 * kGhost;
+    const bool near_high = changed.empty() || changed.hi[dir] > grid_.n[dir];
+    if (grid_.bc[dir] == Boundary::Periodic) {
+      if (low && high && (near_low || near_high))
+        kernels::fill_ghosts(f.data, dir, grid_.n[dir], GhostRule::Periodic, 0.0, 0.0, x_lo - w.lo[0], x_hi - w.lo[0]);
+    } else if ((low && near_low) || (high && near_high)) {
+      // the Even rule in the window's numbering: its first owned index is kGhost - w.lo[dir]
+      kernels::mirror_ghosts(f.data, dir, kGhost - w.lo[dir], kGhost + grid_.n[dir] - 1 - w.lo[dir], low && near_low,
+                             high && near_high, x_lo - w.lo[0], x_hi - w.lo[0]);
+    }
   }
 }
 

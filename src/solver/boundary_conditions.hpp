@@ -4,6 +4,7 @@
 #include "parallel/mpi.hpp"
 
 #include "config/case_config.hpp"
+#include "core/window_field.hpp"
 #include "grid/grid.hpp"
 #include "solver/flow_state.hpp"
 
@@ -31,6 +32,9 @@ class BoundaryConditions {
   // last filled: the y/z ghosts are refreshed only on the x-planes of `changed`, and only along a
   // direction whose boundary `changed` comes within a ghost width of. Empty: a full fill.
   void fill_scalar(const Field3& f, const Box& changed) const;
+  // The same for a field stored on a window of the slab (src/solid/solid_window.hpp): a window
+  // reaches the y or z ghosts only when it holds that whole direction, and only those are filled.
+  void fill_scalar(const WindowField& f, const Box& changed) const;
 
  private:
   Grid grid_;

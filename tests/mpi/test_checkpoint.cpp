@@ -169,7 +169,9 @@ TEST_F(Checkpoint, RoundTripIsBitExactAndKeepsGhosts) {
   const Grid g = make_grid(kCells);
   const Fields out = {{"u", random_field(g, "u", 1)}, {"v", random_field(g, "v", 2)}, {"p", random_field(g, "p", 3)}};
   const CheckpointMeta m = sample_meta(123);
-  eulerfsi::write_checkpoint(path_, g, MPI_COMM_WORLD, m, out);
+  std::vector<eulerfsi::CheckpointSource> sources;
+  for (const auto& [name, f] : out) sources.push_back({name, f});
+  eulerfsi::write_checkpoint(path_, g, MPI_COMM_WORLD, m, sources);
 
   const Fields in = {{"p", sentinel_field(g, "p")}, {"u", sentinel_field(g, "u")}, {"v", sentinel_field(g, "v")}};
   const CheckpointMeta r = eulerfsi::read_checkpoint(path_, g, MPI_COMM_WORLD, in);

@@ -41,12 +41,13 @@ struct Budget {
 // y of the centroid of the whole psi (the sphere starts at z = 0 and stays there by symmetry, so
 // this is its radial position); its rate of change is the body's mean radial velocity P_r / V.
 double whole_centroid_y(test::CoupledCase& run) {
-  const Field3 psi = run.solids.bodies()[0].psi;
+  const WindowField psi = run.solids.bodies()[0].psi;
+  const Box cells = intersection(run.grid.interior(), psi.window());
   const kernels::CellCentres xc{{run.grid.centre(0, 0), run.grid.centre(1, 0), run.grid.centre(2, 0)},
                                 {run.grid.h[0], run.grid.h[1], run.grid.h[2]}};
   double sum[2] = {0.0, 0.0};
   for (int q = 0; q < 2; ++q)
-    Kokkos::parallel_reduce("test::centroid", run.grid.interior().policy(), KOKKOS_LAMBDA(int i, int j, int k, double& a) {
+    Kokkos::parallel_reduce("test::centroid", cells.policy(), KOKKOS_LAMBDA(int i, int j, int k, double& a) {
       a += psi(i, j, k) * (q == 0 ? 1.0 : xc(1, j));
     }, sum[q]);
   return run.comm.sum(sum[1]) / run.comm.sum(sum[0]);

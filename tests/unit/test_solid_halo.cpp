@@ -26,10 +26,10 @@ struct HaloCheck {
 };
 
 HaloCheck check_halo(const SolidBody& body, const Box& box) {
-  auto psi = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), body.psi);
+  auto psi = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), body.psi.data);
   std::vector<decltype(psi)> b;
   for (int c = 0; c < kernels::kTensorComponents; ++c)
-    b.push_back(Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), body.b.c[c]));
+    b.push_back(Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), body.b.c[c].data));
   HaloCheck r;
   for (int i = box.lo[0]; i < box.hi[0]; ++i)
     for (int j = box.lo[1]; j < box.hi[1]; ++j)

@@ -40,7 +40,7 @@ struct Mesh {
 };
 
 void set_identity(const Tensor6& b) {
-  for (int s = 0; s < kernels::kTensorComponents; ++s) Kokkos::deep_copy(b.c[s], s < 3 ? 1.0 : 0.0);
+  for (int s = 0; s < kernels::kTensorComponents; ++s) Kokkos::deep_copy(b.c[s].data, s < 3 ? 1.0 : 0.0);
 }
 
 // psi of a sphere by 4^3 sub-sampling; direction d periodic with period L[d] when L[d] > 0
@@ -264,7 +264,7 @@ TEST(SolidFields, ElasticEnergyDensity) {
   const double* cases[3] = {shear, ident, dil};
   for (int c = 0; c < 3; ++c) {
     Tensor6 b = m.tensor("b");
-    for (int q = 0; q < 6; ++q) Kokkos::deep_copy(b.c[q], cases[c][q]);
+    for (int q = 0; q < 6; ++q) Kokkos::deep_copy(b.c[q].data, cases[c][q]);
     Kokkos::deep_copy(out, 0.0);
     kernels::elastic_energy_add(out, psi, b, G, m.interior());
     EXPECT_LT(max_abs_minus(out, expect[c], m.interior()), 1e-14) << "case " << c;
@@ -283,13 +283,13 @@ TEST(SolidTransport, IdentityStaysIdentityUnderTranslation) {
   const double dt = 0.2 * m.h[0];
   for (int n = 0; n < 20; ++n)
     for (int s = 0; s < 3; ++s) {
-      for (int c = 0; c < 6; ++c) test_support::fill_periodic(b.c[c], m.n);
+      for (int c = 0; c < 6; ++c) test_support::fill_periodic(b.c[c].data, m.n);
       kernels::tensor_transport_rhs(rhs, b, vel, m.field("psi_solid"), -1.0, m.h, m.interior());  // psi_min < 0: every cell
       kernels::rk3_tensor_update(b, b, rhs, rhs_old, dt, kGamma[s], kZeta[s], m.interior());
       std::swap(rhs, rhs_old);
     }
   double err = 0.0;
-  for (int c = 0; c < 6; ++c) err = std::fmax(err, max_abs_minus(b.c[c], c < 3 ? 1.0 : 0.0, m.interior()));
+  for (int c = 0; c < 6; ++c) err = std::fmax(err, max_abs_minus(b.c[c].data, c < 3 ? 1.0 : 0.0, m.interior()));
   std::printf("translation: max |B - I| after 20 steps %.2e\n", err);
   EXPECT_LT(err, 1e-12);
 }
@@ -321,7 +321,7 @@ TEST(SolidTransport, StretchingIsExactForLinearVelocity) {
       });
     }
     Tensor6 b = m.tensor("b"), rhs = m.tensor("rhs");
-    for (int c = 0; c < 6; ++c) Kokkos::deep_copy(b.c[c], bval[c]);
+    for (int c = 0; c < 6; ++c) Kokkos::deep_copy(b.c[c].data, bval[c]);
     kernels::tensor_transport_rhs(rhs, b, vel, m.field("psi_solid"), -1.0, m.h, m.interior());  // psi_min < 0: every cell
     double B[3][3];
     for (int a = 0; a < 3; ++a)
@@ -331,7 +331,7 @@ TEST(SolidTransport, StretchingIsExactForLinearVelocity) {
       const int ra[6] = {0, 1, 2, 0, 0, 1}, rc[6] = {0, 1, 2, 1, 2, 2};
       double expect = 0.0;
       for (int q = 0; q < 3; ++q) expect += A[ra[s]][q] * B[q][rc[s]] + B[ra[s]][q] * A[rc[s]][q];
-      err = std::fmax(err, max_abs_minus(rhs.c[s], expect, m.interior()));
+      err = std::fmax(err, max_abs_minus(rhs.c[s].data, expect, m.interior()));
     }
     std::printf("linear velocity case %d: max |rhs - (AB + BA^T)| %.2e\n", cas, err);
     EXPECT_LT(err, 1e-12);
@@ -358,7 +358,7 @@ TEST(SolidTransport, SimpleShearMatchesExactDeformation) {
   for (int n = 0; n < steps; ++n)
     for (int s = 0; s < 3; ++s) {
       // B is uniform, so a periodic copy is also exact in the sheared y direction
-      for (int c = 0; c < 6; ++c) test_support::fill_periodic(b.c[c], m.n);
+      for (int c = 0; c < 6; ++c) test_support::fill_periodic(b.c[c].data, m.n);
       kernels::tensor_transport_rhs(rhs, b, vel, m.field("psi_solid"), -1.0, m.h, m.interior());  // psi_min < 0: every cell
       kernels::rk3_tensor_update(b, b, rhs, rhs_old, dt, kGamma[s], kZeta[s], m.interior());
       std::swap(rhs, rhs_old);
@@ -366,10 +366,10 @@ TEST(SolidTransport, SimpleShearMatchesExactDeformation) {
   const double gt = g * dt * steps;
   const double exact[6] = {1.0 + gt * gt, 1.0, 1.0, gt, 0.0, 0.0};
   double err = 0.0;
-  for (int c = 0; c < 6; ++c) err = std::fmax(err, max_abs_minus(b.c[c], exact[c], m.interior()));
-  auto hb = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), b.c[0]);
-  auto hy = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), b.c[1]);
-  auto hxy = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), b.c[3]);
+  for (int c = 0; c < 6; ++c) err = std::fmax(err, max_abs_minus(b.c[c].data, exact[c], m.interior()));
+  auto hb = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), b.c[0].data);
+  auto hy = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), b.c[1].data);
+  auto hxy = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), b.c[3].data);
   const int c0 = kGhost + 2;
   const double det = hb(c0, c0, c0) * hy(c0, c0, c0) - hxy(c0, c0, c0) * hxy(c0, c0, c0);  // zz = 1, xz = yz = 0
   std::printf("shear: max |B - F F^T| at g t = 1: %.2e, det B - 1 = %.2e\n", err, det - 1.0);
@@ -413,7 +413,7 @@ TEST(SolidTransport, TensorExtensionFromTheSolid) {
     return v[s];
   };
   std::vector<Kokkos::View<double***, Kokkos::LayoutRight, Kokkos::HostSpace>> hb;
-  for (int s = 0; s < 6; ++s) hb.push_back(Kokkos::create_mirror_view(b.c[s]));
+  for (int s = 0; s < 6; ++s) hb.push_back(Kokkos::create_mirror_view(b.c[s].data));
   auto hpsi = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), psi);
   for (int i = 0; i < m.e[0]; ++i)
     for (int j = 0; j < m.e[1]; ++j)
@@ -423,15 +423,15 @@ TEST(SolidTransport, TensorExtensionFromTheSolid) {
           hb[s](i, j, k) = hpsi(i, j, k) >= 0.5 ? linear(s, x, y, z) : (s < 3 ? 1e3 : 40.0 * (s - 2));
       }
   for (int s = 0; s < 6; ++s) hb[s](bad, bad, bad) = 5.0;  // singular: lost positive definiteness
-  for (int s = 0; s < 6; ++s) Kokkos::deep_copy(b.c[s], hb[s]);
+  for (int s = 0; s < 6; ++s) Kokkos::deep_copy(b.c[s].data, hb[s]);
 
   // as the solver calls it: valid ghosts of psi and B, then mark + sweeps on shrinking grown boxes
   test_support::fill_periodic(psi, m.n);
-  for (int s = 0; s < 6; ++s) test_support::fill_periodic(b.c[s], m.n);
+  for (int s = 0; s < 6; ++s) test_support::fill_periodic(b.c[s].data, m.n);
   kernels::extend_tensor(b, known, psi, 0.5, band, m.interior());
 
   std::vector<Kokkos::View<double***, Kokkos::LayoutRight, Kokkos::HostSpace>> out;
-  for (int s = 0; s < 6; ++s) out.push_back(Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), b.c[s]));
+  for (int s = 0; s < 6; ++s) out.push_back(Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), b.c[s].data));
   double lo_s[6], hi_s[6];
   for (int s = 0; s < 6; ++s) lo_s[s] = 1e300, hi_s[s] = -1e300;
   const Box in = m.interior();
@@ -510,7 +510,7 @@ double elastic_force_error(int N) {
   Tensor6 b = m.tensor("b");
   const ManufacturedB mb;
   for (int s = 0; s < 6; ++s) {
-    const Field3 bs = b.c[s];
+    const Field3 bs = b.c[s].data;
     Kokkos::parallel_for("test::mms_b", m.all().policy(), KOKKOS_LAMBDA(int i, int j, int k) {
       const double x[3] = {(i - kGhost + 0.5) * h, (j - kGhost + 0.5) * h, (k - kGhost + 0.5) * h};
       bs(i, j, k) = mb.value(s, x);
@@ -552,8 +552,8 @@ TEST(ElasticForce, NoForceWithoutDeformation) {
   for (int d = 0; d < 3; ++d) err = std::fmax(err, max_abs_minus(rhs.c[d], 0.0, m.interior()));
   EXPECT_EQ(err, 0.0);
   for (int s = 0; s < 6; ++s) {
-    Kokkos::deep_copy(b.c[s], (s < 3 ? 1.0 : 0.0) + 0.37);
-    Kokkos::deep_copy(bp.c[s], (s < 3 ? 1.0 : 0.0) - 0.37);
+    Kokkos::deep_copy(b.c[s].data, (s < 3 ? 1.0 : 0.0) + 0.37);
+    Kokkos::deep_copy(bp.c[s].data, (s < 3 ? 1.0 : 0.0) - 0.37);
   }
   kernels::add_elastic_force(rhs, psi, b, bp, 3.0, m.h, m.interior());
   for (int d = 0; d < 3; ++d) err = std::fmax(err, max_abs_minus(rhs.c[d], 0.0, m.interior()));
@@ -655,7 +655,7 @@ TEST(ParticleMoments, ForceTermsOnExactFields) {
   Velocity vel = m.velocity();
   Tensor6 b = m.tensor("b");
   set_identity(b);
-  const Field3 u = vel.c[0], bxy = b.c[kernels::XY];
+  const Field3 u = vel.c[0], bxy = b.c[kernels::XY].data;
   Kokkos::parallel_for("test::force_fields", m.all().policy(), KOKKOS_LAMBDA(int i, int j, int k) {
     const double x = (i - kGhost + 0.5) * h0, y = -0.5 + (j - kGhost + 0.5) * h1;
     p(i, j, k) = -3.0 * x;
