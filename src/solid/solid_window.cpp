@@ -21,12 +21,6 @@ void SolidWindow::set_whole_slab() {
   }
 }
 
-bool SolidWindow::whole_slab() const {
-  for (int d = 0; d < 3; ++d)
-    if (lo_[d] != 0 || hi_[d] != grid_.n[d] + 2 * kGhost) return false;
-  return true;
-}
-
 Box SolidWindow::local_part(const Grid& grid, const Box& global) {
   const int first = grid.x_offset, last = grid.x_offset + grid.nx_local + 2 * kGhost;
   Box b = global;
@@ -72,10 +66,13 @@ bool SolidWindow::hold(const Box& needed, const std::vector<Member>& members, bo
   int all[6];
   MPI_Allreduce(ext, all, 6, MPI_INT, MPI_MIN, comm_.comm);
   if (all[0] == INT_MAX) return false;  // no rank needs the body's fields
+  const Box w = placement(grid_, Box{{all[0], all[1], all[2]}, {-all[3], -all[4], -all[5]}});
   bool inside = !always_move;
   for (int d = 0; d < 3; ++d) inside = inside && all[d] >= lo_[d] && -all[3 + d] <= hi_[d];
-  if (inside) return false;
-  const Box w = placement(grid_, Box{{all[0], all[1], all[2]}, {-all[3], -all[4], -all[5]}});
+  // it also shrinks once it holds more than twice what it needs (a body gone from the periodic end
+  // or a wall: the window had taken in the whole direction or the wall's ghosts)
+  const Box now{{lo_[0], lo_[1], lo_[2]}, {hi_[0], hi_[1], hi_[2]}};
+  if (inside && now.size() <= 2 * w.size()) return false;
   for (int d = 0; d < 3; ++d) {
     lo_[d] = w.lo[d];
     hi_[d] = w.hi[d];

@@ -33,9 +33,9 @@ class SolidWindow {
   SolidWindow(const Grid& grid, const Comm& comm) : grid_(grid), comm_(comm), lo_{0, 0, 0}, hi_{0, 0, 0} {}
 
   // Collective: the window holds `needed` (this rank's cells in storage indices; may be empty) on
-  // every rank; where it does not, it moves (grown by the slack) and every member with it, values
-  // kept where old and new windows overlap and `outside` elsewhere (always_move: also when it holds
-  // `needed`, to shrink it). Returns whether it moved.
+  // every rank; where it does not, or where it holds more than twice the cells it needs, it moves
+  // (grown by the slack) and every member with it, values kept where old and new windows overlap
+  // and `outside` elsewhere (always_move: also otherwise). Returns whether it moved.
   bool hold(const Box& needed, const std::vector<Member>& members, bool always_move = false);
   // The window of everything (the whole-slab reference path, a restart) for every member.
   void hold_whole_slab(const std::vector<Member>& members);
@@ -47,8 +47,6 @@ class SolidWindow {
   static Box local_part(const Grid& grid, const Box& global);
   // A new field on the window, `outside` everywhere.
   WindowField make_field(const char* label, double outside) const;
-  // Whether the window is the whole grid.
-  bool whole_slab() const;
   // How often hold() moved it.
   int moves() const { return moves_; }
 
