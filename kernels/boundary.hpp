@@ -11,44 +11,52 @@ namespace eulerfsi::kernels {
 enum class GhostRule { Periodic, Even, Tangent, Normal };
 
 // The ghost layers of one line of f along DIR (the other two indices fixed), storage index s.
+// A field on a window (src/solid/solid_window.hpp) numbers its cells from `origin` along DIR and
+// may hold the ghosts of one side only (low, high).
 template <int DIR>
 struct GhostLine {
   Field3 f;
   int n;  // owned cells along DIR
   GhostRule rule;
   double wall_lo, wall_hi;
+  int origin = 0;
+  bool low = true, high = true;
 
   KOKKOS_FORCEINLINE_FUNCTION double& at(int a, int b, int s) const {
     return DIR == 1 ? f(a, s, b) : f(a, b, s);
   }
   KOKKOS_INLINE_FUNCTION void operator()(int a, int b) const {
     constexpr int G = kGhost;
-    const int lo = G, hi = G + n - 1;  // first and last owned index
+    const int lo = G - origin, hi = G + n - 1 - origin;  // first and last owned index
     switch (rule) {
       case GhostRule::Periodic:
         for (int m = 0; m < G; ++m) {
-          at(a, b, lo - 1 - m) = at(a, b, hi - m);
-          at(a, b, hi + 1 + m) = at(a, b, lo + m);
+          if (low) at(a, b, lo - 1 - m) = at(a, b, hi - m);
+          if (high) at(a, b, hi + 1 + m) = at(a, b, lo + m);
         }
         break;
       case GhostRule::Even:
         for (int m = 0; m < G; ++m) {
-          at(a, b, lo - 1 - m) = at(a, b, lo + m);
-          at(a, b, hi + 1 + m) = at(a, b, hi - m);
+          if (low) at(a, b, lo - 1 - m) = at(a, b, lo + m);
+          if (high) at(a, b, hi + 1 + m) = at(a, b, hi - m);
         }
         break;
       case GhostRule::Tangent:
         for (int m = 0; m < G; ++m) {
-          at(a, b, lo - 1 - m) = 2.0 * wall_lo - at(a, b, lo + m);
-          at(a, b, hi + 1 + m) = 2.0 * wall_hi - at(a, b, hi - m);
+          if (low) at(a, b, lo - 1 - m) = 2.0 * wall_lo - at(a, b, lo + m);
+          if (high) at(a, b, hi + 1 + m) = 2.0 * wall_hi - at(a, b, hi - m);
         }
         break;
       case GhostRule::Normal:
         // the low wall face is index G-1, the high wall face index G+n-1 (the last owned face)
-        at(a, b, lo - 1) = 0.0;
-        at(a, b, hi) = 0.0;
-        for (int m = 1; m < G; ++m) at(a, b, lo - 1 - m) = -at(a, b, lo - 1 + m);
-        for (int m = 1; m <= G; ++m) at(a, b, hi + m) = -at(a, b, hi - m);
+        if (low) {
+          at(a, b, lo - 1) = 0.0;
+          for (int m = 1; m < G; ++m) at(a, b, lo - 1 - m) = -at(a, b, lo - 1 + m);
+        }
+        if (high) {
+          at(a, b, hi) = 0.0;
+          for (int m = 1; m <= G; ++m) at(a, b, hi + m) = -at(a, b, hi - m);
+        }
         break;
     }
   }
@@ -68,19 +76,17 @@ inline void fill_ghosts(const Field3& f, int dir, int n, GhostRule rule, double 
   }
 }
 
-// The Even rule on either side of f along `dir` (1 or 2): f(first - 1 - m) = f(first + m) on the low
-// side, f(last + 1 + m) = f(last - m) on the high side, over the x-planes [x_lo, x_hi) and every
-// other index. For a field on a window that holds one wall's ghosts only (first, last: the owned
-// range in the field's own numbering).
-inline void mirror_ghosts(const Field3& f, int dir, int first, int last, bool low, bool high, int x_lo, int x_hi) {
+// The same on a field stored on a window: its numbering along `dir` starts at storage index
+// `origin`, and only the sides it holds (low, high) are filled; x-planes [x_lo, x_hi) of its own.
+inline void fill_window_ghosts(const Field3& f, int dir, int n, GhostRule rule, int origin, bool low, bool high,
+                               int x_lo, int x_hi) {
   const int eb = static_cast<int>(f.extent(dir == 1 ? 2 : 1));
   const Policy2 plane({x_lo, 0}, {x_hi > x_lo ? x_hi : x_lo, eb});
-  Kokkos::parallel_for("eulerfsi::boundary::mirror_ghosts", plane, KOKKOS_LAMBDA(int a, int b) {
-    for (int m = 0; m < kGhost; ++m) {
-      if (low) (dir == 1 ? f(a, first - 1 - m, b) : f(a, b, first - 1 - m)) = (dir == 1 ? f(a, first + m, b) : f(a, b, first + m));
-      if (high) (dir == 1 ? f(a, last + 1 + m, b) : f(a, b, last + 1 + m)) = (dir == 1 ? f(a, last - m, b) : f(a, b, last - m));
-    }
-  });
+  if (dir == 1) {
+    Kokkos::parallel_for("eulerfsi::boundary::ghosts_y", plane, GhostLine<1>{f, n, rule, 0.0, 0.0, origin, low, high});
+  } else {
+    Kokkos::parallel_for("eulerfsi::boundary::ghosts_z", plane, GhostLine<2>{f, n, rule, 0.0, 0.0, origin, low, high});
+  }
 }
 
 }  // namespace eulerfsi::kernels

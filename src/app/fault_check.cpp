@@ -14,7 +14,8 @@ std::string locate_non_finite(const std::vector<std::pair<std::string, WindowFie
   for (const auto& [name, f] : fields) {
     auto data = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), f.data);
     const Box w = f.window(), b = intersection(g.interior(), w);
-    auto h = [&](int i, int j, int k) { return data(i - w.lo[0], j - w.lo[1], k - w.lo[2]); };
+    const int i0 = w.lo[0], j0 = w.lo[1], k0 = w.lo[2];
+    auto h = [data, i0, j0, k0](int i, int j, int k) { return data(i - i0, j - j0, k - k0); };
     for (int i = b.lo[0]; i < b.hi[0] && !msg[0]; ++i)
       for (int j = b.lo[1]; j < b.hi[1] && !msg[0]; ++j)
         for (int k = b.lo[2]; k < b.hi[2] && !msg[0]; ++k)

@@ -72,7 +72,7 @@ void BoundaryConditions::fill_scalar(const Field3& f, const Box& changed) const 
 
 void BoundaryConditions::fill_scalar(const WindowField& f, const Box& changed) const {
   const Box w = f.window(), all = grid_.all();
-  auto whole_along = [&](int d) { return w.lo[d] == all.lo[d] && w.hi[d] == all.hi[d]; };
+  auto whole_along = [w, all](int d) { return w.lo[d] == all.lo[d] && w.hi[d] == all.hi[d]; };
   if (whole_along(0) && whole_along(1) && whole_along(2)) {
     fill_scalar(f.data, changed);
     return;
@@ -87,14 +87,14 @@ void BoundaryConditions::fill_scalar(const WindowField& f, const Box& changed) c
     const bool low = w.lo[dir] == 0, high = w.hi[dir] == all.hi[dir];
     const bool near_low = changed.empty() || changed.lo[dir] < 2 * kGhost;
     const bool near_high = changed.empty() || changed.hi[dir] > grid_.n[dir];
-    if (grid_.bc[dir] == Boundary::Periodic) {
-      if (low && high && (near_low || near_high))
-        kernels::fill_ghosts(f.data, dir, grid_.n[dir], GhostRule::Periodic, 0.0, 0.0, x_lo - w.lo[0], x_hi - w.lo[0]);
-    } else if ((low && near_low) || (high && near_high)) {
-      // the Even rule in the window's numbering: its first owned index is kGhost - w.lo[dir]
-      kernels::mirror_ghosts(f.data, dir, kGhost - w.lo[dir], kGhost + grid_.n[dir] - 1 - w.lo[dir], low && near_low,
-                             high && near_high, x_lo - w.lo[0], x_hi - w.lo[0]);
-    }
+    // a periodic direction's ghosts are images of the far end (the window then holds both ends):
+    // a change near either end reaches both; a wall's ghosts mirror the cells next to them
+    const bool periodic = grid_.bc[dir] == Boundary::Periodic;
+    const bool fill_low = periodic ? low && high && (near_low || near_high) : low && near_low;
+    const bool fill_high = periodic ? fill_low : high && near_high;
+    if (fill_low || fill_high)
+      kernels::fill_window_ghosts(f.data, dir, grid_.n[dir], periodic ? GhostRule::Periodic : GhostRule::Even, w.lo[dir],
+                                  fill_low, fill_high, x_lo - w.lo[0], x_hi - w.lo[0]);
   }
 }
 
