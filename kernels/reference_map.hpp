@@ -208,23 +208,37 @@ struct ExtrapolationSweep {
     // weights 1/|r|^2 by |r|^2 = 1..12 (the centre, r = 0, is the unknown cell itself)
     const double inv_r2[13] = {0.0,       1.0,       1.0 / 2,  1.0 / 3,  1.0 / 4,  1.0 / 5, 1.0 / 6,
                                1.0 / 7,   1.0 / 8,   1.0 / 9,  1.0 / 10, 1.0 / 11, 1.0 / 12};
-    // normal equations; M is symmetric: the upper triangle is summed, the lower copied after
-    double M[4][4] = {}, rhs[4][3] = {};
+    // normal equations M c = rhs of the basis (1, a, b, c): M holds the weighted moments
+    // sum w a^m b^n c^l (m + n + l <= 2) of the known offsets, rhs sum w (1, a, b, c) q. Each line
+    // along c is summed first (its moments in c and q), then weighted by a and b: 9 multiply-adds
+    // per known point instead of 22.
+    double S = 0, Sa = 0, Sb = 0, Sc = 0, Saa = 0, Sab = 0, Sac = 0, Sbb = 0, Sbc = 0, Scc = 0;
+    double rhs[4][3] = {};
     for (int a = -2; a <= 2; ++a)
-      for (int b = -2; b <= 2; ++b)
+      for (int b = -2; b <= 2; ++b) {
+        double sw = 0, swc = 0, swcc = 0, swq[3] = {}, swcq[3] = {};
         for (int c = -2; c <= 2; ++c) {
           if (!known(i + a, j + b, k + c)) continue;
-          const double w = inv_r2[a * a + b * b + c * c];
-          const double basis[4] = {1.0, double(a), double(b), double(c)};
-          const double qv[3] = {q.c[0](i + a, j + b, k + c), q.c[1](i + a, j + b, k + c), q.c[2](i + a, j + b, k + c)};
-          for (int r = 0; r < 4; ++r) {
-            const double wb = w * basis[r];
-            for (int col = r; col < 4; ++col) M[r][col] += wb * basis[col];
-            for (int d = 0; d < 3; ++d) rhs[r][d] += wb * qv[d];
+          const double w = inv_r2[a * a + b * b + c * c], wc = w * c;
+          sw += w;
+          swc += wc;
+          swcc += wc * c;
+          for (int d = 0; d < 3; ++d) {
+            const double qv = q.c[d](i + a, j + b, k + c);
+            swq[d] += w * qv;
+            swcq[d] += wc * qv;
           }
         }
-    for (int r = 1; r < 4; ++r)
-      for (int col = 0; col < r; ++col) M[r][col] = M[col][r];
+        S += sw, Sa += a * sw, Sb += b * sw, Sc += swc;
+        Saa += a * a * sw, Sab += a * b * sw, Sac += a * swc, Sbb += b * b * sw, Sbc += b * swc, Scc += swcc;
+        for (int d = 0; d < 3; ++d) {
+          rhs[0][d] += swq[d];
+          rhs[1][d] += a * swq[d];
+          rhs[2][d] += b * swq[d];
+          rhs[3][d] += swcq[d];
+        }
+      }
+    double M[4][4] = {{S, Sa, Sb, Sc}, {Sa, Saa, Sab, Sac}, {Sb, Sab, Sbb, Sbc}, {Sc, Sac, Sbc, Scc}};
     // the fallback, the weighted mean, is row 0 (solve4 overwrites it)
     const double wsum = M[0][0], mean[3] = {rhs[0][0], rhs[0][1], rhs[0][2]};
     double value[3];

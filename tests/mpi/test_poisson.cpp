@@ -20,6 +20,7 @@
 #include "poisson/poisson_solver.hpp"
 #ifdef EULERFSI_HAVE_MPI
 #include "poisson/fftw_mpi_poisson.hpp"
+#include "poisson/fftw_mpi_r2r.hpp"
 #endif
 #include "support/mpi_env.hpp"
 
@@ -302,6 +303,61 @@ TEST(Poisson, RejectsGridOfAnotherDecomposition) {
   const double len[3] = {1.0, 1.0, 1.0};
   const Grid g(cells, len, W, W, eulerfsi::test::rank(), 2 * eulerfsi::test::nranks());
   EXPECT_THROW(eulerfsi::FftwMpiPoisson(g, MPI_COMM_WORLD), std::runtime_error);
+}
+#endif
+
+#ifdef EULERFSI_HAVE_MPI
+// The z lines solved directly (Thomas) against the z transform, for every z end rule, the Poisson
+// operator (a = 0, b = 1: the zero mode included) and a Helmholtz one (a = 1, b = -0.3), on odd and
+// even line lengths and a one-unknown line: the same discrete problem, so the same solution to the
+// 1e-12 of the solver comparison above (both are exact solvers; round-off ~eps cond, cond < 200).
+TEST(FftwMpiR2r, TridiagonalZLinesAgreeWithTheZTransform) {
+  using eulerfsi::FftwMpiR2r;
+  using eulerfsi::R2rKind;
+  const R2rKind z_kinds[3] = {R2rKind::EvenHalf, R2rKind::OddHalf, R2rKind::OddFace};
+  const double ab[2][2] = {{0.0, 1.0}, {1.0, -0.3}};
+  const int nzs[3] = {7, 10, 2};  // OddFace on 2 cells: one unknown
+  for (const R2rKind kz : z_kinds)
+    for (const int nz : nzs)
+      for (const auto& coef : ab)
+        for (const R2rKind ky : {R2rKind::Periodic, R2rKind::EvenHalf}) {
+          const int cells[3] = {12, 9, nz};
+          const double len[3] = {1.0, 0.9, 0.1 * nz};
+          const Grid g(cells, len, W, W, eulerfsi::test::rank(), eulerfsi::test::nranks());
+          const R2rKind kind[3] = {R2rKind::Periodic, ky, kz};
+          FftwMpiR2r lines(g, MPI_COMM_WORLD, kind, FftwMpiR2r::Planning::Estimate, "test", nullptr,
+                           FftwMpiR2r::AlongZ::Tridiagonal);
+          FftwMpiR2r transform(g, MPI_COMM_WORLD, kind, FftwMpiR2r::Planning::Estimate, "test", nullptr,
+                               FftwMpiR2r::AlongZ::Transform);
+          ASSERT_TRUE(lines.tridiagonal_z());
+          ASSERT_FALSE(transform.tridiagonal_z());
+          Field3 x1 = g.make_field("x1"), x2 = g.make_field("x2");
+          auto h1 = Kokkos::create_mirror_view(x1);
+          const int x0 = g.x_offset;
+          for (int i = 0; i < g.nx_local; ++i)
+            for (int j = 0; j < g.n[1]; ++j)
+              for (int k = 0; k < g.n[2]; ++k) h1(i + kGhost, j + kGhost, k + kGhost) = noise(x0 + i, j, k) + 0.5;
+          Kokkos::deep_copy(x1, h1);
+          Kokkos::deep_copy(x2, h1);
+          lines.solve(x1, coef[0], coef[1]);
+          transform.solve(x2, coef[0], coef[1]);
+          auto r1 = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), x1);
+          auto r2 = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), x2);
+          const int nzu = kz == R2rKind::OddFace ? nz - 1 : nz;
+          double diff = 0.0, size = 0.0;
+          for (int i = 0; i < g.nx_local; ++i)
+            for (int j = 0; j < g.n[1]; ++j)
+              for (int k = 0; k < nzu; ++k) {
+                const double a = r1(i + kGhost, j + kGhost, k + kGhost), b = r2(i + kGhost, j + kGhost, k + kGhost);
+                diff = std::max(diff, std::fabs(a - b));
+                size = std::max(size, std::fabs(b));
+              }
+          diff = allreduce(diff, MPI_MAX);
+          size = allreduce(size, MPI_MAX);
+          EXPECT_GT(size, 0.0);
+          EXPECT_LE(diff, 1e-12 * size) << "z kind " << int(kz) << ", nz " << nz << ", a " << coef[0] << ", y kind "
+                                        << int(ky);
+        }
 }
 #endif
 
