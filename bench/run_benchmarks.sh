@@ -33,6 +33,12 @@ for t in $threads; do
     OMP_NUM_THREADS=$t "$exe" "${flags[@]}" "${extra[@]}" --benchmark_out="$out/${b}_t$t.json" >&2
   done
 done
+# the steps on 2 MPI ranks x 1 thread (the slab split): the time is the slowest rank's
+if command -v mpiexec > /dev/null && [ "${RANKS:-2}" -gt 1 ]; then
+  echo "== bench_step, ${RANKS:-2} ranks x 1 thread" >&2
+  OMP_NUM_THREADS=1 mpiexec -n "${RANKS:-2}" "$build/bench/bench_step" "${flags[@]}" \
+    --benchmark_filter='BM_Step/' --benchmark_out="$out/step_t1_r${RANKS:-2}.json" >&2
+fi
 load_after=$(cut -d' ' -f1-3 /proc/loadavg)
 
 /usr/bin/python3 "$here/support/make_results.py" "$out" "$here/RESULTS.md" \

@@ -63,38 +63,41 @@ def main():
     args = parse_args()
     triad, rows, context = {}, [], {}
     for path in sorted(glob.glob(os.path.join(args.json_dir, "*.json"))):
-        kind, threads = re.match(r"(\w+?)_t(\d+)\.json", os.path.basename(path)).groups()
-        threads = int(threads)
+        kind, threads, ranks = re.match(r"(\w+?)_t(\d+)(?:_r(\d+))?\.json", os.path.basename(path)).groups()
+        threads, ranks = int(threads), int(ranks or 1)
         context, runs = medians(path)
         for r in runs:
             name = r["run_name"]
             if kind == "triad":
                 triad[threads] = r["GB/s"]
-                triad_wa = r["GB/s_with_write_allocate"]
-                rows.append((0, "", name, threads, "triad a = b + s c, 3 x 64 MiB", None, None, None, r["GB/s"]))
+                rows.append((0, "", name, threads, ranks, "triad a = b + s c, 3 x 64 MiB", None, None, None, r["GB/s"]))
                 continue
             grid, a = grid_of(name)
             fn = re.match(r"BM_(\w+)", name).group(1)
             if kind == "step":
                 sphere = {"0": "", "1": " + sphere (paper model)", "2": " + sphere (reference map)"}[a.get("particle", "0")]
-                label = f"**whole RK3 step {grid}{sphere}**"
-                rows.append((1, grid, name, threads, label, r["ns_per_cell_step"], 1, r["ns_per_cell_step"], None))
+                implicit = " (implicit viscosity)" if fn == "StepImplicitViscosity" else ""
+                label = f"**whole RK3 step {grid}{sphere}{implicit}**"
+                rows.append((1, grid, name, threads, ranks, label, r["ns_per_cell_step"], 1, r["ns_per_cell_step"], None))
             else:
                 calls = CALLS_PER_STEP.get(fn, 1)
                 ns = r["ns_per_cell"]
                 order = 3 if fn == "PoissonSolve" else 2
-                rows.append((order, grid, name, threads, f"{NAMES.get(fn, fn)} {grid}", ns, calls, ns * calls,
+                rows.append((order, grid, name, threads, ranks, f"{NAMES.get(fn, fn)} {grid}", ns, calls, ns * calls,
                              r.get("GB/s")))
+    # the same benchmark on one core, and the single-phase step of the same grid and parallel layout
+    one_core = {r[2]: r[8] for r in rows if r[3] == 1 and r[4] == 1}
+    flow = {(r[1], r[3], r[4]): r[8] for r in rows if r[0] == 1 and "particle:0" in r[2] and "Implicit" not in r[2]}
     # steps first, then kernels in the order they were run, Poisson, triad last
     seen = {}
     for i, r in enumerate(rows):
         seen.setdefault(r[2], i)
-    rows.sort(key=lambda r: ({1: 0, 2: 1, 3: 2, 0: 3}[r[0]], r[1] != "64x64x64" and r[0] == 2, seen[r[2]], r[3]))
+    rows.sort(key=lambda r: ({1: 0, 2: 1, 3: 2, 0: 3}[r[0]], r[1] != "64x64x64" and r[0] == 2, seen[r[2]], r[4], r[3]))
 
     lines = [BEGIN, ""]
     lines.append(f"Machine: {args.model}, {args.cores} cores (shared with other users: timings are noisy).  ")
     lines.append(f"Date: {datetime.date.today().isoformat()}, commit {args.commit}, {args.toolchain}, "
-                 f"Kokkos OpenMP backend, OMP_PROC_BIND=false, 1 MPI rank.  ")
+                 f"Kokkos OpenMP backend, OMP_PROC_BIND=false; one MPI rank unless the layout says 2 ranks.  ")
     lines.append(f"Every number is the **median of {args.reps} repetitions** "
                  f"(`--benchmark_repetitions={args.reps} --benchmark_report_aggregates_only=true`); "
                  f"load average before -> after the run: {args.load}.")
@@ -104,11 +107,22 @@ def main():
                  "(the count is in bench/bench_kernels.cpp above each benchmark); the triad counts 24 B per element "
                  "without write-allocate, the same convention.")
     lines.append("")
-    lines.append("| benchmark | threads | ns/cell (per call) | calls/step | ns/cell/step | GB/s | triad GB/s |")
-    lines.append("|---|---:|---:|---:|---:|---:|---:|")
-    for order, grid, name, threads, label, ns, calls, ns_step, gbs in rows:
-        lines.append(f"| {label} | {threads} | {fmt(ns)} | {calls if calls else '-'} | {fmt(ns_step)} | "
-                     f"{fmt(gbs)} | {fmt(triad.get(threads))} |")
+    lines.append("x 1 core: the one-core time over this one (the speed-up). x flow: a step with a particle over the "
+                 "single-phase step of the same grid and layout. % triad: GB/s over the triad measured in the same "
+                 "run with the same threads (2 ranks: the 2-thread triad).")
+    lines.append("")
+    lines.append("| benchmark | threads x ranks | ns/cell (per call) | calls/step | ns/cell/step | x 1 core | x flow | GB/s "
+                 "| % triad |")
+    lines.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for order, grid, name, threads, ranks, label, ns, calls, ns_step, gbs in rows:
+        base = one_core.get(name)
+        speedup = base / ns_step if base and ns_step and (threads, ranks) != (1, 1) else None
+        flow_ns = flow.get((grid, threads, ranks)) if order == 1 and "particle:0" not in name else None
+        cores = threads * ranks
+        tri = triad.get(cores)
+        share = 100.0 * gbs / tri if gbs and tri else None
+        lines.append(f"| {label} | {threads} x {ranks} | {fmt(ns)} | {calls if calls else '-'} | {fmt(ns_step)} | "
+                     f"{fmt(speedup)} | {fmt(ns_step / flow_ns if flow_ns else None)} | {fmt(gbs)} | {fmt(share, 2)} |")
     lines += ["", END]
     block = "\n".join(lines)
 
