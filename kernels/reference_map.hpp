@@ -217,14 +217,18 @@ struct ExtrapolationSweep {
     for (int a = -2; a <= 2; ++a)
       for (int b = -2; b <= 2; ++b) {
         double sw = 0, swc = 0, swcc = 0, swq[3] = {}, swcq[3] = {};
+        // the line's five cells are contiguous (z is the fastest index)
+        const double* lv = &level(i + a, j + b, k - 2);
+        const double* ql[3] = {&q.c[0](i + a, j + b, k - 2), &q.c[1](i + a, j + b, k - 2), &q.c[2](i + a, j + b, k - 2)};
         for (int c = -2; c <= 2; ++c) {
-          if (!known(i + a, j + b, k + c)) continue;
+          const double l = lv[c + 2];
+          if (l < kLevelSolid || l > s) continue;
           const double w = inv_r2[a * a + b * b + c * c], wc = w * c;
           sw += w;
           swc += wc;
           swcc += wc * c;
           for (int d = 0; d < 3; ++d) {
-            const double qv = q.c[d](i + a, j + b, k + c);
+            const double qv = ql[d][c + 2];
             swq[d] += w * qv;
             swcq[d] += wc * qv;
           }
