@@ -68,9 +68,16 @@ Box SolidPhase::active_box() const {
 }
 
 // mu = background where the previous call wrote, then background + sum psi (mu_s - mu_f) on the
-// bodies' box with its ghosts (psi = 0 beyond it).
+// bodies' box with its ghosts (psi = 0 beyond it). Bodies as viscous as the fluid (the paper's
+// mu_s/mu_f = 1) leave mu uniform: no region, so the momentum kernel keeps its constant-mu path.
 void SolidPhase::mixture_viscosity(const Field3& mu, double mu_fluid, double background) {
   kernels::fill_box(mu, background, mu_region_);
+  bool variable = false;
+  for (const auto& body : bodies_) variable = variable || body.mu_s != mu_fluid;
+  if (!variable) {
+    mu_region_ = Box{{0, 0, 0}, {0, 0, 0}};
+    return;
+  }
   mu_region_ = active_box().grown(kGhost, grid_.all());
   kernels::fill_box(mu, background, mu_region_);
   for (const auto& body : bodies_)
