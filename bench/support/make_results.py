@@ -87,7 +87,7 @@ def main():
                              r.get("GB/s")))
     # the same benchmark on one core, and the single-phase step of the same grid and parallel layout
     one_core = {r[2]: r[8] for r in rows if r[3] == 1 and r[4] == 1}
-    flow = {(r[1], r[3], r[4]): r[8] for r in rows if r[0] == 1 and "particle:0" in r[2] and "Implicit" not in r[2]}
+    flow = {(r[1], r[3], r[4], "Implicit" in r[2]): r[8] for r in rows if r[0] == 1 and "particle:0" in r[2]}
     # steps first, then kernels in the order they were run, Poisson, triad last
     seen = {}
     for i, r in enumerate(rows):
@@ -117,12 +117,13 @@ def main():
     for order, grid, name, threads, ranks, label, ns, calls, ns_step, gbs in rows:
         base = one_core.get(name)
         speedup = base / ns_step if base and ns_step and (threads, ranks) != (1, 1) else None
-        flow_ns = flow.get((grid, threads, ranks)) if order == 1 and "particle:0" not in name else None
+        flow_ns = flow.get((grid, threads, ranks, "Implicit" in name)) if order == 1 and "particle:0" not in name else None
         cores = threads * ranks
         tri = triad.get(cores)
         share = 100.0 * gbs / tri if gbs and tri else None
+        share_text = f"{share:.0f}" if share else "-"
         lines.append(f"| {label} | {threads} x {ranks} | {fmt(ns)} | {calls if calls else '-'} | {fmt(ns_step)} | "
-                     f"{fmt(speedup)} | {fmt(ns_step / flow_ns if flow_ns else None)} | {fmt(gbs)} | {fmt(share, 2)} |")
+                     f"{fmt(speedup)} | {fmt(ns_step / flow_ns if flow_ns else None)} | {fmt(gbs)} | {share_text} |")
     lines += ["", END]
     block = "\n".join(lines)
 
