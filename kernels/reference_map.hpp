@@ -193,10 +193,9 @@ struct ExtrapolationSweep {
     return true;
   }
 
-  KOKKOS_INLINE_FUNCTION bool known(int i, int j, int k) const {
-    const double l = level(i, j, k);
-    return l >= kLevelSolid && l <= s;
-  }
+  // A level known before this sweep: the solid (1) or a band level up to s.
+  KOKKOS_INLINE_FUNCTION bool known_level(double l) const { return l >= kLevelSolid && l <= s; }
+  KOKKOS_INLINE_FUNCTION bool known(int i, int j, int k) const { return known_level(level(i, j, k)); }
 
   KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k) const {
     if (level(i, j, k) != 0.0) return;
@@ -221,8 +220,7 @@ struct ExtrapolationSweep {
         const double* lv = &level(i + a, j + b, k - 2);
         const double* ql[3] = {&q.c[0](i + a, j + b, k - 2), &q.c[1](i + a, j + b, k - 2), &q.c[2](i + a, j + b, k - 2)};
         for (int c = -2; c <= 2; ++c) {
-          const double l = lv[c + 2];
-          if (l < kLevelSolid || l > s) continue;
+          if (!known_level(lv[c + 2])) continue;
           const double w = inv_r2[a * a + b * b + c * c], wc = w * c;
           sw += w;
           swc += wc;
