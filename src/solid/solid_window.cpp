@@ -12,6 +12,11 @@ namespace {
 // a step (CFL < 1), so the fields are copied every few steps, not every step.
 constexpr int kSlack = 2;
 
+// to = from on the cells of `box` (a device lambda may not sit in a private member function).
+void copy_cells(const WindowField& to, const WindowField& from, const Box& box) {
+  for_each_cell("eulerfsi::solid::window_move", box, KOKKOS_LAMBDA(int i, int j, int k) { to(i, j, k) = from(i, j, k); });
+}
+
 }  // namespace
 
 void SolidWindow::set_whole_slab() {
@@ -99,8 +104,7 @@ void SolidWindow::move(const std::vector<Member>& members) const {
     const WindowField old = *m.field;
     if (old.allocated()) {
       const Box overlap = intersection(old.window(), moved.window());
-      for_each_cell("eulerfsi::solid::window_move", overlap,
-                    KOKKOS_LAMBDA(int i, int j, int k) { moved(i, j, k) = old(i, j, k); });
+      copy_cells(moved, old, overlap);
     }
     *m.field = moved;
   }

@@ -13,6 +13,7 @@
 #include "kernels/interface_sharpening.hpp"
 #include "kernels/solid_transport.hpp"
 #include "support/periodic_fill.hpp"
+#include "support/device_test.hpp"
 
 using namespace eulerfsi;
 
@@ -133,7 +134,7 @@ TEST(InterfaceSharpening, ConservesVolumeAndNarrowsTheInterface) {
 // psi) n)| ~ 1 / (4 eps): measured on eps = 2 h and 4 h it must be < 10 % and fall by > 3x (second
 // order: 4x). Dropping the transverse part of grad psi . n would leave 2/3 of the diffusion out,
 // an O(1) error that does not fall with h / eps.
-TEST(InterfaceSharpening, DiagonalTanhProfileIsAFixedPoint) {
+DEVICE_TEST(InterfaceSharpening, DiagonalTanhProfileIsAFixedPoint) {
   const Mesh m(32);
   const double h = m.h[0];
   double rel[2];
@@ -245,7 +246,7 @@ TEST(InterfaceSharpening, EllipsoidKeepsItsShapeWithNormalDiffusionOnly) {
 // 4 pi R^2 (5.889 eps) / h^3 = 1515 cells for R = 6.4 h (allowed: +15 %, for the profile not yet
 // at equilibrium and the discrete normals), must be < 85 % of WENO alone, and the L1 shape error
 // against the exact sphere must fall by > 15 %.
-TEST(InterfaceSharpening, AdvectedSphereKeepsItsShape) {
+DEVICE_TEST(InterfaceSharpening, AdvectedSphereKeepsItsShape) {
   constexpr double kGamma[3] = {8.0 / 15.0, 5.0 / 12.0, 3.0 / 4.0};
   constexpr double kZeta[3] = {0.0, -17.0 / 60.0, -5.0 / 12.0};
   const Mesh m(32);

@@ -12,6 +12,7 @@
 #include "kernels/tensor_extension.hpp"
 #include "solid/particle_diagnostics.hpp"
 #include "support/periodic_fill.hpp"
+#include "support/device_test.hpp"
 
 using namespace eulerfsi;
 using kernels::Tensor6;
@@ -298,7 +299,7 @@ TEST(SolidTransport, IdentityStaysIdentityUnderTranslation) {
 // for linear fields and div(u B) = B tr A = 0, so rhs = A B + B A^T to round-off (1e-12 for
 // O(1) data). A antisymmetric (rigid rotation) with B = I gives rhs = 0. This checks every
 // index of L and of the stretching term.
-TEST(SolidTransport, StretchingIsExactForLinearVelocity) {
+DEVICE_TEST(SolidTransport, StretchingIsExactForLinearVelocity) {
   const Mesh m(8, 8, 8, 1.0, 1.0, 1.0);
   const double lo[3] = {-0.5, -0.5, -0.5};
   const double rot[3][3] = {{0.0, -1.1, -0.7}, {1.1, 0.0, 0.3}, {0.7, -0.3, 0.0}};
@@ -343,7 +344,7 @@ TEST(SolidTransport, StretchingIsExactForLinearVelocity) {
 // linear ODE y' = M y with M^3 = 0 (B_yy -> B_xy -> B_xx). Any 3-stage third-order RK has the
 // amplification polynomial 1 + z + z^2/2 + z^3/6, which equals exp(M dt) when M^3 = 0: the
 // scheme is exact and the error is round-off (1e-12 after 100 steps to g t = 1).
-TEST(SolidTransport, SimpleShearMatchesExactDeformation) {
+DEVICE_TEST(SolidTransport, SimpleShearMatchesExactDeformation) {
   const Mesh m(6, 6, 6, 1.0, 1.0, 1.0);
   const double g = 1.0, dt = 0.01;
   const int steps = 100;
@@ -378,7 +379,7 @@ TEST(SolidTransport, SimpleShearMatchesExactDeformation) {
 }
 
 // psi is clipped into [0, 1].
-TEST(SolidTransport, ClipVolumeFraction) {
+DEVICE_TEST(SolidTransport, ClipVolumeFraction) {
   const Mesh m(4, 4, 4, 1.0, 1.0, 1.0);
   Field3 psi = m.field("psi");
   Kokkos::deep_copy(psi, 1.2);
@@ -646,7 +647,7 @@ TEST(ParticleMoments, SphereVolumeCentroidAndInertia) {
 // integral equals (sum psi dV) times the analytic pointwise value to round-off (1e-12 relative):
 // p = -3 x -> F^P = 3 V e_x; u = a y^2 -> div(u u) = 0, div(grad u + grad u^T) = 2a e_x;
 // B_xy = c y -> div(B)_x = c, div(B)_y = 0.
-TEST(ParticleMoments, ForceTermsOnExactFields) {
+DEVICE_TEST(ParticleMoments, ForceTermsOnExactFields) {
   const Mesh m(32, 16, 16, 1.0, 1.0, 1.0);
   const double lo[3] = {0.0, -0.5, -0.5}, L[3] = {1.0, 0.0, 0.0}, c[3] = {0.5, 0.05, 0.0};
   Field3 psi = m.field("psi"), p = m.field("p");
@@ -682,7 +683,7 @@ TEST(ParticleMoments, ForceTermsOnExactFields) {
 // decomposition must still be the laboratory's, -div((u' + U e_x) u_D) = -div(u' u_D) - U du_D/dx
 // (div u = 0). On a discretely divergence-free field (u, v from an edge stream function, w = w(x))
 // both ways of computing it agree to round-off.
-TEST(ParticleMoments, InertiaForceIsTheLaboratorysInAMovingFrame) {
+DEVICE_TEST(ParticleMoments, InertiaForceIsTheLaboratorysInAMovingFrame) {
   const Mesh m(32, 16, 16, 1.0, 1.0, 1.0);
   const double lo[3] = {0.0, -0.5, -0.5}, L[3] = {1.0, 0.0, 0.0}, c[3] = {0.45, 0.1, -0.05};
   Field3 psi = m.field("psi"), p = m.field("p");

@@ -8,6 +8,7 @@
 #include "kernels/solid_transport.hpp"
 #include "kernels/weno5.hpp"
 #include "support/periodic_fill.hpp"
+#include "support/device_test.hpp"
 
 using namespace eulerfsi;
 
@@ -82,7 +83,7 @@ TEST(Weno5, FluxDifferenceConvergesAtFifthOrderOnSmoothData) {
 // The 3-D operator scalar_advection_rhs: q = sin(2 pi x) + sin(2 pi y) + sin(2 pi z) in a periodic
 // unit box with constant velocity (1, -0.5, 0.25) (both upwind branches), exact rhs = -u.grad q.
 // Same fifth-order truncation error as above: require max-norm order > 4.5 for N = 16, 32, 64.
-TEST(Weno5, AdvectionOperatorConvergesAtFifthOrder) {
+DEVICE_TEST(Weno5, AdvectionOperatorConvergesAtFifthOrder) {
   const double vel[3] = {1.0, -0.5, 0.25};
   double err[3];
   const int Ns[3] = {16, 32, 64};
