@@ -5,6 +5,9 @@
 #include <sstream>
 
 #include "core/types.hpp"
+#if defined(KOKKOS_ENABLE_HIP)
+#include <hip/hip_runtime.h>
+#endif
 #include "solid/reference_map_model.hpp"
 
 namespace eulerfsi {
@@ -18,6 +21,9 @@ constexpr double kFlowFields = 12.0;
 // one-rank DCT solver's real and half-complex arrays and its line buffers.
 constexpr double kPoissonFieldsFftwMpi = 2.0;
 constexpr double kPoissonFieldsFftDct = 4.0;
+// cuFFT: the one work area all plans share (src/poisson/fft_engine_cufft.cpp), about the size of
+// the largest batch; not yet measured on a GPU (hipFFT still gives each plan its own).
+constexpr double kDeviceFftWorkFields = 1.0;
 // time.implicit_viscosity: its right-hand side and the three transforms' shared buffer (measured:
 // +36.6 - 32.4 MiB on a 96 x 48 x 48 pipe, 1.8 of its 2.4 MiB fields; src/poisson/helmholtz_solver.cpp).
 constexpr double kImplicitViscosityFields = 2.0;
@@ -46,6 +52,22 @@ double available_bytes() {
     if (key == "MemAvailable:") return kib * 1024.0;
   return 0.0;
 }
+
+// Free memory of the GPU this process runs on (CUDA, HIP) in bytes; 0 where MemSpace is host
+// memory or the runtime does not say.
+double device_available_bytes() {
+#if defined(KOKKOS_ENABLE_CUDA)
+  size_t free_bytes = 0, total = 0;
+  return cudaMemGetInfo(&free_bytes, &total) == cudaSuccess ? double(free_bytes) : 0.0;
+#elif defined(KOKKOS_ENABLE_HIP)
+  size_t free_bytes = 0, total = 0;
+  return hipMemGetInfo(&free_bytes, &total) == hipSuccess ? double(free_bytes) : 0.0;
+#else
+  return 0.0;
+#endif
+}
+
+constexpr bool kHostMemory = Kokkos::SpaceAccessibility<Kokkos::HostSpace, MemSpace>::accessible;
 
 // Ranks of this run on this node.
 int ranks_on_node(const Comm& comm) {
@@ -78,7 +100,8 @@ MemoryEstimate estimate_memory(const CaseConfig& cfg, const Grid& grid) {
 #else
   const bool fft_dct = false;
 #endif
-  m.flow_fields = kFlowFields + (fft_dct ? kPoissonFieldsFftDct : kPoissonFieldsFftwMpi) +
+  m.flow_fields = kFlowFields + (fft_dct ? kPoissonFieldsFftDct + (kHostMemory ? 0.0 : kDeviceFftWorkFields)
+                                         : kPoissonFieldsFftwMpi) +
                   (cfg.output.fields_every > 0 ? kSnapshotFields : 0.0) +
                   (cfg.time.implicit_viscosity ? kImplicitViscosityFields : 0.0);
   for (const auto& s : cfg.solids) {
@@ -105,22 +128,29 @@ std::string describe_memory(const CaseConfig& cfg, const Grid& grid, const Comm&
     out << "; up to " << gib(m.peak_bytes() + kOverheadBytes) << " while a checkpoint is read"
         << (cfg.flow.frame_follows_particle ? "" : " or a body crosses the periodic x end");
   out << ")";
-  const double avail = available_bytes();
-  if (avail > 0.0) out << "; this node has " << gib(avail) << " available for " << ranks_on_node(comm) << " rank(s)";
+  if (kHostMemory) {
+    const double avail = available_bytes();
+    if (avail > 0.0) out << "; this node has " << gib(avail) << " available for " << ranks_on_node(comm) << " rank(s)";
+  } else {
+    const double avail = device_available_bytes();
+    if (avail > 0.0) out << "; this rank's GPU has " << gib(avail) << " free";
+  }
   out << "\n";
   return out.str();
 }
 
 void refuse_if_out_of_memory(const CaseConfig& cfg, const Grid& grid, const Comm& comm) {
-  if (!Kokkos::SpaceAccessibility<Kokkos::HostSpace, MemSpace>::accessible) return;  // device memory: not checked
-  const double avail = available_bytes();
-  const int ranks = ranks_on_node(comm);
+  // host memory: every rank of the node shares it; a GPU: each rank has its own
+  const double avail = kHostMemory ? available_bytes() : device_available_bytes();
+  const int ranks = kHostMemory ? ranks_on_node(comm) : 1;
   const double need = (estimate_memory(cfg, grid).peak_bytes() + kOverheadBytes) * ranks;
   if (!comm.any(avail > 0.0 && need > avail)) return;
+  const std::string where = kHostMemory ? " on this node (" + std::to_string(ranks) + " rank(s)), which has "
+                                        : " on this rank's GPU, which has ";
   throw ConfigError(cfg.source + ": domain.cells = [" + std::to_string(cfg.domain.cells[0]) + ", " +
                     std::to_string(cfg.domain.cells[1]) + ", " + std::to_string(cfg.domain.cells[2]) + "] needs about " +
-                    gib(need) + " on this node (" + std::to_string(ranks) + " rank(s)), which has " + gib(avail) +
-                    " available: use fewer cells, or more nodes");
+                    gib(need) + where + gib(avail) + " available: use fewer cells, or more " +
+                    (kHostMemory ? "nodes" : "GPUs"));
 }
 
 }  // namespace eulerfsi

@@ -1,5 +1,7 @@
-// FftEngine on NVIDIA GPUs: cuFFT's batched plans (cufftPlanMany) on the stream of
-// Kokkos' default Cuda instance, so transforms and kernels run in order without fences.
+// FftEngine on NVIDIA GPUs: cuFFT's batched plans (cufftMakePlanMany) on the stream of
+// Kokkos' default Cuda instance, so transforms and kernels run in order without fences. All plans
+// share one work area (they run one after the other on that stream): up to six plans per solve
+// would otherwise each keep their own.
 // Compiled only when Kokkos has CUDA (CMake picks this file).
 #include <cufft.h>
 
@@ -57,11 +59,24 @@ class CufftEngine final : public FftEngine {
     const int idist = type == CUFFT_Z2D ? half_dist : type == CUFFT_D2Z ? real_dist : n;
     const int odist = type == CUFFT_D2Z ? half_dist : type == CUFFT_Z2D ? real_dist : n;
     cufftHandle h;
-    check(cufftPlanMany(&h, 1, &len, &len, 1, idist, &len, 1, odist, type, batch), "cufftPlanMany");
+    check(cufftCreate(&h), "cufftCreate");
+    check(cufftSetAutoAllocation(h, 0), "cufftSetAutoAllocation");
+    size_t work_bytes = 0;
+    check(cufftMakePlanMany(h, 1, &len, &len, 1, idist, &len, 1, odist, type, batch, &work_bytes), "cufftMakePlanMany");
     check(cufftSetStream(h, compat::cuda_stream()), "cufftSetStream");
-    return plans_[key] = h;
+    plans_[key] = h;
+    if (work_bytes > work_.extent(0)) {
+      compat::fence();  // transforms still queued may be using the old area
+      work_ = WorkArea(Kokkos::view_alloc(Kokkos::WithoutInitializing, "eulerfsi::cufft::work"), work_bytes);
+      for (auto& kv : plans_) check(cufftSetWorkArea(kv.second, work_.data()), "cufftSetWorkArea");
+    } else if (work_.extent(0) > 0) {
+      check(cufftSetWorkArea(h, work_.data()), "cufftSetWorkArea");
+    }
+    return h;
   }
 
+  using WorkArea = Kokkos::View<char*, MemSpace>;
+  WorkArea work_;  // freed after ~CufftEngine's body has destroyed the plans
   std::map<std::tuple<int, int, int>, cufftHandle> plans_;
 };
 
