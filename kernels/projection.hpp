@@ -7,13 +7,21 @@
 namespace eulerfsi::kernels {
 
 // out(i,j,k) = scale * [ (u(i)-u(i-1))/dx + (v(j)-v(j-1))/dy + (w(k)-w(k-1))/dz ]
-inline void divergence(const Field3& out, const Field3& u, const Field3& v, const Field3& w, const double h[3],
-                       double scale, const Box& box) {
+// out(i - shift, j - shift, k - shift) for a cell (i, j, k) of the box: shift = kGhost writes the
+// interior as one contiguous block (a Poisson solver's own buffer, no copy in).
+template <class Out>
+inline void divergence_shifted(const Out& out, int shift, const Field3& u, const Field3& v, const Field3& w,
+                               const double h[3], double scale, const Box& box) {
   const double ix = scale / h[0], iy = scale / h[1], iz = scale / h[2];
   for_each_cell("eulerfsi::projection::divergence", box, KOKKOS_LAMBDA(int i, int j, int k) {
-    out(i, j, k) = (u(i, j, k) - u(i - 1, j, k)) * ix + (v(i, j, k) - v(i, j - 1, k)) * iy +
-                   (w(i, j, k) - w(i, j, k - 1)) * iz;
+    out(i - shift, j - shift, k - shift) = (u(i, j, k) - u(i - 1, j, k)) * ix + (v(i, j, k) - v(i, j - 1, k)) * iy +
+                                           (w(i, j, k) - w(i, j, k - 1)) * iz;
   });
+}
+
+inline void divergence(const Field3& out, const Field3& u, const Field3& v, const Field3& w, const double h[3],
+                       double scale, const Box& box) {
+  divergence_shifted(out, 0, u, v, w, h, scale, box);
 }
 
 // u_D(i) -= factor (phi(i + e_D) - phi(i)) / h_D for the three components in one sweep.

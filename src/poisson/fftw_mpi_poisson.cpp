@@ -1,5 +1,7 @@
 #include "poisson/fftw_mpi_poisson.hpp"
 
+#include "kernels/projection.hpp"
+
 namespace eulerfsi {
 
 namespace {
@@ -16,5 +18,13 @@ struct PressureKinds {
 
 FftwMpiPoisson::FftwMpiPoisson(const Grid& grid, MPI_Comm comm, Planning planning)
     : transform_(grid, comm, PressureKinds(grid).kind, planning, "FftwMpiPoisson") {}
+
+// The divergence goes straight into the transform's contiguous unknowns (FFTW's own buffer on
+// hosts): the gather pass of solve() is skipped, the arithmetic is the same.
+void FftwMpiPoisson::solve_divergence(Field3 phi, const Field3& u, const Field3& v, const Field3& w, const double h[3],
+                                      double scale, const Box& interior) {
+  kernels::divergence_shifted(transform_.unknown_block(), kGhost, u, v, w, h, scale, interior);
+  transform_.solve_gathered(phi, 0.0, 1.0);
+}
 
 }  // namespace eulerfsi

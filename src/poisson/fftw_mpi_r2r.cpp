@@ -176,6 +176,13 @@ void FftwMpiR2r::solve(const Field3& f, double a, double b) {
   Kokkos::parallel_for(
       "eulerfsi::fft::gather", Policy3({0, 0, 0}, {nx_local_, n_[1], n_[2]}),
       KOKKOS_LAMBDA(const int i, const int j, const int k) { work(i, j, k) = field(i + g, j + g, k + g); });
+  solve_gathered(f, a, b);
+}
+
+void FftwMpiR2r::solve_gathered(const Field3& f, double a, double b) {
+  const int g = kGhost;
+  Work3 work = work_;
+  const Field3 field = f;
   // FFTW reads the buffer from the host
   compat::fence();
   if (!kHostAccessible) Kokkos::deep_copy(physical_, work);

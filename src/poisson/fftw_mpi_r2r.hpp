@@ -49,6 +49,11 @@ class FftwMpiR2r {
   // direction) with x = f / (a + b lambda), mode by mode; a mode whose denominator is exactly 0
   // (the Poisson zero mode) is set to 0. Ghosts are neither read nor written.
   void solve(const Field3& f, double a, double b);
+  // The same with the unknowns already written into unknown_block() (f's interior as one contiguous
+  // block, index (i, j, k) = storage (i, j, k) + kGhost): x goes into f's interior.
+  void solve_gathered(const Field3& f, double a, double b);
+  using Work3 = Kokkos::View<double***, Kokkos::LayoutRight, MemSpace>;
+  const Work3& unknown_block() const { return work_; }
   // True when z is solved line by line (a wall z, AlongZ::Tridiagonal, at most kMaxLine unknowns).
   bool tridiagonal_z() const { return tridiagonal_z_; }
 
@@ -61,7 +66,6 @@ class FftwMpiR2r {
 
   using HostBuffer3 = Kokkos::View<double***, Kokkos::LayoutRight, Kokkos::HostSpace, Kokkos::MemoryUnmanaged>;
   using HostLine = Kokkos::View<double*, Kokkos::HostSpace>;
-  using Work3 = Kokkos::View<double***, Kokkos::LayoutRight, MemSpace>;
   static constexpr bool kHostAccessible = Kokkos::SpaceAccessibility<Kokkos::HostSpace, MemSpace>::accessible;
 
   int n_[3] = {0, 0, 0};          // unknowns per direction (the transform sizes)

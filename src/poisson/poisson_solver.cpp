@@ -1,5 +1,6 @@
 #include "poisson/poisson_solver.hpp"
 
+#include "kernels/projection.hpp"
 #include "poisson/fft_dct_poisson.hpp"
 #ifdef EULERFSI_HAVE_MPI
 #include "poisson/fftw_mpi_poisson.hpp"
@@ -8,6 +9,12 @@
 namespace eulerfsi {
 
 PoissonSolver::~PoissonSolver() = default;
+
+void PoissonSolver::solve_divergence(Field3 phi, const Field3& u, const Field3& v, const Field3& w, const double h[3],
+                                     double scale, const Box& interior) {
+  kernels::divergence(phi, u, v, w, h, scale, interior);
+  solve(phi);
+}
 
 namespace {
 // CMake's EULERFSI_POISSON (AUTO picks FFT_DCT without MPI or on GPUs, FFTW_MPI otherwise)

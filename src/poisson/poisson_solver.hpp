@@ -23,6 +23,11 @@ class PoissonSolver {
   // Reads f from the interior (storage indices kGhost .. kGhost+n-1) of rhs_phi and overwrites
   // that interior with phi. Ghosts are neither read nor filled: the caller fills them.
   virtual void solve(Field3 rhs_phi) = 0;
+  // The projection's solve: f = scale div(u, v, w) (kernels/projection.hpp) on the interior box,
+  // then phi into the interior of `phi`, as divergence + solve(phi) do. A solver with its own
+  // buffer writes f straight into it (one pass over the grid less).
+  virtual void solve_divergence(Field3 phi, const Field3& u, const Field3& v, const Field3& w, const double h[3],
+                                double scale, const Box& interior);
   virtual const char* name() const = 0;
 };
 

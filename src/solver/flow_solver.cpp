@@ -296,8 +296,7 @@ void FlowSolver::set_frame_velocity(double u_frame, double t) {
 void FlowSolver::project(double alpha_dt) {
   const Box box = grid_.interior();
   auto& vel = state_.vel;
-  kernels::divergence(state_.p, vel.c[0], vel.c[1], vel.c[2], grid_.h, 1.0 / alpha_dt, box);
-  poisson_->solve(state_.p);
+  poisson_->solve_divergence(state_.p, vel.c[0], vel.c[1], vel.c[2], grid_.h, 1.0 / alpha_dt, box);
   bc_.fill_scalar(state_.p);
   kernels::subtract_gradient(vel.c[0], vel.c[1], vel.c[2], state_.p, grid_.h, alpha_dt, box);
 }
