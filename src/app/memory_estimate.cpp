@@ -90,6 +90,17 @@ std::string gib(double bytes) {
   return buf;
 }
 
+// The memory a run's ranks share and how many share it: host memory is the node's, divided
+// among its ranks; a GPU's is its own rank's. bytes = 0: unknown.
+struct MemoryPool {
+  double bytes;
+  int ranks;
+};
+MemoryPool memory_pool(const Comm& comm) {
+  if (kHostMemory) return {available_bytes(), ranks_on_node(comm)};
+  return {device_available_bytes(), 1};
+}
+
 }  // namespace
 
 MemoryEstimate estimate_memory(const CaseConfig& cfg, const Grid& grid) {
@@ -128,21 +139,18 @@ std::string describe_memory(const CaseConfig& cfg, const Grid& grid, const Comm&
     out << "; up to " << gib(m.peak_bytes() + kOverheadBytes) << " while a checkpoint is read"
         << (cfg.flow.frame_follows_particle ? "" : " or a body crosses the periodic x end");
   out << ")";
-  if (kHostMemory) {
-    const double avail = available_bytes();
-    if (avail > 0.0) out << "; this node has " << gib(avail) << " available for " << ranks_on_node(comm) << " rank(s)";
-  } else {
-    const double avail = device_available_bytes();
-    if (avail > 0.0) out << "; this rank's GPU has " << gib(avail) << " free";
-  }
+  const MemoryPool pool = memory_pool(comm);
+  if (pool.bytes > 0.0)
+    out << (kHostMemory ? "; this node has " : "; this rank's GPU has ") << gib(pool.bytes)
+        << (kHostMemory ? " available for " + std::to_string(pool.ranks) + " rank(s)" : std::string(" free"));
   out << "\n";
   return out.str();
 }
 
 void refuse_if_out_of_memory(const CaseConfig& cfg, const Grid& grid, const Comm& comm) {
-  // host memory: every rank of the node shares it; a GPU: each rank has its own
-  const double avail = kHostMemory ? available_bytes() : device_available_bytes();
-  const int ranks = kHostMemory ? ranks_on_node(comm) : 1;
+  const MemoryPool pool = memory_pool(comm);
+  const double avail = pool.bytes;
+  const int ranks = pool.ranks;
   const double need = (estimate_memory(cfg, grid).peak_bytes() + kOverheadBytes) * ranks;
   if (!comm.any(avail > 0.0 && need > avail)) return;
   const std::string where = kHostMemory ? " on this node (" + std::to_string(ranks) + " rank(s)), which has "
