@@ -5,38 +5,11 @@
 // viscosity at cell centres; edge values average the four neighbouring cells.
 #include "core/launch.hpp"
 #include "core/types.hpp"
+#include "kernels/momentum_fluxes.hpp"
+#include "kernels/momentum_sweep.hpp"
 #include "kernels/offsets.hpp"
 
 namespace eulerfsi::kernels {
-
-struct Velocity {
-  Field3 c[3];
-};
-
-// Flux of D-momentum through the cell centred at c in direction D:
-//   F = uc_D^2 - 2 mu du_D/dx_D, with uc_D the centre average of the two faces of the cell.
-// Flux of D-momentum in direction E through the edge at (c + e_D/2 + e_E/2):
-//   F = (u_D u_E)_edge - mu_edge (du_D/dx_E + du_E/dx_D)
-// Uniform: the viscosity is the constant mu_uniform wherever the kernel runs (the field mu is
-// not read: one stream less, and no edge averages).
-// rhs_D = -(F_DD(i+e_D) - F_DD(i))/h_D - sum_{E != D} (F_DE(i) - F_DE(i - e_E))/h_E, written on
-// raw pointers with unit offsets s_A (all fields share one layout): the compiler then sees that
-// rhs does not alias the inputs and vectorises the k loop on CPUs.
-template <int D, int E, bool Uniform>
-KOKKOS_FORCEINLINE_FUNCTION double shear_flux_at(const double* KOKKOS_RESTRICT uD, const double* KOKKOS_RESTRICT uE,
-                                                  const double* KOKKOS_RESTRICT mu, double mu_uniform, long c, long sD,
-                                                  long sE, double ihD, double ihE) {
-  const double mu_edge = Uniform ? mu_uniform : 0.25 * (mu[c] + mu[c + sD] + mu[c + sE] + mu[c + sD + sE]);
-  return 0.25 * (uD[c] + uD[c + sE]) * (uE[c] + uE[c + sD]) -
-         mu_edge * ((uD[c + sE] - uD[c]) * ihE + (uE[c + sD] - uE[c]) * ihD);
-}
-
-template <bool Uniform>
-KOKKOS_FORCEINLINE_FUNCTION double normal_flux_at(const double* KOKKOS_RESTRICT uD, const double* KOKKOS_RESTRICT mu,
-                                                   double mu_uniform, long c, long sD, double ihD) {
-  const double uc = 0.5 * (uD[c] + uD[c - sD]);
-  return uc * uc - 2.0 * (Uniform ? mu_uniform : mu[c]) * (uD[c] - uD[c - sD]) * ihD;
-}
 
 template <int D, bool Uniform>
 struct MomentumRhs {
@@ -112,6 +85,17 @@ template <bool Uniform>
 inline void momentum_rhs_impl(const Velocity& rhs, const Velocity& u, const Field3& mu, double mu_uniform,
                               const double h[3], const Box& box, const char* label) {
   const double inv_h[3] = {1.0 / h[0], 1.0 / h[1], 1.0 / h[2]};
+  if constexpr (kHostKernels) {
+    const long st[3] = {long(rhs.c[0].stride(0)), long(rhs.c[0].stride(1)), 1};
+    const MomentumSweep<Uniform> f{{rhs.c[0].data(), rhs.c[1].data(), rhs.c[2].data()},
+                                   {u.c[0].data(), u.c[1].data(), u.c[2].data()},
+                                   Uniform ? nullptr : mu.data(),
+                                   mu_uniform,
+                                   {inv_h[0], inv_h[1], inv_h[2]},
+                                   {st[0], st[1], st[2]}};
+    momentum_sweep(f, box, label);
+    return;
+  }
   MomentumRhsAll<Uniform> f{{rhs.c[0], u.c[0], u.c[1], u.c[2], mu, mu_uniform, {inv_h[0], inv_h[1], inv_h[2]}},
                             {rhs.c[1], u.c[0], u.c[1], u.c[2], mu, mu_uniform, {inv_h[0], inv_h[1], inv_h[2]}},
                             {rhs.c[2], u.c[0], u.c[1], u.c[2], mu, mu_uniform, {inv_h[0], inv_h[1], inv_h[2]}}};
