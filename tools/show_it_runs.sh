@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Issue 9's show-it set: Re = 100, r0/R = 0.2828, released at rest, grid following the particle,
 # Lx = 2, the paper's sharp wall, CFL 0.2, to t = 20; both models at 8 and 12 cells per d, We = 4
-# and 0.125. Runs live outside the repo (RUNS, default /work/runs/show) and are checkpointed; the
+# and 0.125; the map also at 16 cells per d (the convergence check of docs/REFERENCE_MAP.md). Runs
+# live outside the repo (RUNS, default /work/runs/show) and are checkpointed; the
 # same command continues a run from its checkpoint.
-#   usage: tools/show_it_runs.sh NAME [NAME ...]   NAME: {paper,map}{8,12}_we{4,0.125}, or "list"
+#   usage: tools/show_it_runs.sh NAME [NAME ...]   NAME: {paper,map}{8,12}_we{4,0.125}, map16_we{4,0.125}, or "list"
 #   environment: BIN (default build/eulerfsi), RUNS, NICE (default 10), T_END (default 20)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -14,23 +15,27 @@ t_end=${T_END:-20}
 
 case_args() {  # NAME -> the case file and --set arguments of that run
   local name=$1 model cells we
-  [[ $name =~ ^(paper|map)(8|12)_we(4|0\.125)$ ]] || { echo "unknown run '$name' (list: $0 list)" >&2; return 2; }
+  [[ $name =~ ^(paper|map)(8|12|16)_we(4|0\.125)$ && $name != paper16* ]] ||
+    { echo "unknown run '$name' (list: $0 list)" >&2; return 2; }
   model=${BASH_REMATCH[1]}; cells=${BASH_REMATCH[2]}; we=${BASH_REMATCH[3]}
   if [ "$we" = 4 ]; then echo -n "$root/cases/validation/migration_soft.toml"
   else echo -n "$root/cases/validation/migration_stiff.toml"; fi
   echo -n " --set flow.pipe_wall=\"sharp\" --set time.t_end=$t_end --set output.checkpoint_every=200"
   [ "$model" = map ] && echo -n " --set solid[0].model=\"reference-map\""
   [ "$cells" = 12 ] && echo -n " --set domain.cells=[120,60,60]"
+  [ "$cells" = 16 ] && echo -n " --set domain.cells=[160,80,80]"
   echo
 }
 
 if [ "${1:-}" = list ] || [ $# = 0 ]; then
   for m in paper map; do for c in 8 12; do for w in 4 0.125; do echo "${m}${c}_we${w}"; done; done; done
+  echo map16_we4; echo map16_we0.125
   exit 0
 fi
 mkdir -p "$runs"
 for name in "$@"; do
-  read -r -a args <<< "$(case_args "$name")"
+  line=$(case_args "$name") || exit 2
+  read -r -a args <<< "$line"
   dir=$runs/$name
   restart=()
   [ -f "$dir/checkpoint.h5" ] && restart=(--restart)
