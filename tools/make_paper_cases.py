@@ -39,10 +39,12 @@ RESOLUTIONS = {
 # What the desk runs cost here: (time reached, wall seconds summed over restarts), one core of the
 # 2-core AMD EPYC development VM shared with a second run (/work/runs/campaign/wall_time.py on
 # the logs; the first 20 time units of We = 0.5 were the domain check's, 968 s).
-DESK_MEASURED = {
-    "re200_we4_r0.2828_visc1": (86.6, 4085),
-    "re200_we0.5_r0.2828_visc1": (49.8, 2371 + 968),
-    "re200_we0.125_r0.2828_visc1": (39.6, 4076),
+_EPYC = "core of a 2-core AMD EPYC VM shared with a second run, session 5 code"
+_XEON = "core of a 2-core Intel Xeon VM (AVX-512) beside a second run and CI, session 10 code"
+DESK_MEASURED = {  # case: (t reached, wall seconds, where)
+    "re200_we4_r0.2828_visc1": (60.0, 348, _XEON),
+    "re200_we0.5_r0.2828_visc1": (49.8, 2371 + 968, _EPYC),
+    "re200_we0.125_r0.2828_visc1": (39.6, 4076, _EPYC),
 }
 
 
@@ -65,9 +67,9 @@ def case_text(res, re, we, r0, visc, rest, title):
     start = "fluid and particle start at rest" if rest else "the particle starts at rest in the developed Poiseuille flow"
     measured = ""
     if res == "desk" and name in DESK_MEASURED:
-        t, wall = DESK_MEASURED[name]
+        t, wall, where = DESK_MEASURED[name]
         measured = (f"# Run here (campaign, docs/REPRODUCTION.md): to t = {t:g} in {wall / 60:.0f} min of wall time on one\n"
-                    f"# core of a 2-core AMD EPYC VM shared with a second run ({wall / t:.0f} s per time unit).\n")
+                    f"# {where} ({wall / t:.1f} s per time unit).\n")
     return f"""# {title}
 # {p['note']}.
 # Alghalibi, Rosti & Brandt (2019): Re = {re}, We = {we:g}, r0/R = {r0}, mu_s/mu_f = {visc:g};
