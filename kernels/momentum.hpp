@@ -45,25 +45,10 @@ struct MomentumRhs {
     rhs.data()[c] = value(field(D), field(E1), field(E2), Uniform ? nullptr : mu.data(), mu_uniform, c, st[D], st[E1],
                           st[E2], inv_h[D], inv_h[E1], inv_h[E2]);
   }
-
-  // One row along k (CPU): the pointers are set up once and the loop vectorises.
-  void row(int i, int j, int k0, int k1) const {
-    const long st[3] = {long(rhs.stride(0)), long(rhs.stride(1)), 1};
-    const long base = i * st[0] + j * st[1];
-    const double* KOKKOS_RESTRICT uD = field(D) + base;
-    const double* KOKKOS_RESTRICT uE1 = field(E1) + base;
-    const double* KOKKOS_RESTRICT uE2 = field(E2) + base;
-    const double* KOKKOS_RESTRICT m = Uniform ? nullptr : mu.data() + base;
-    double* KOKKOS_RESTRICT out = rhs.data() + base;
-    const long sD = st[D], s1 = st[E1], s2 = st[E2];
-    const double mu0 = mu_uniform, ihD = inv_h[D], ih1 = inv_h[E1], ih2 = inv_h[E2];
-    EULERFSI_INDEPENDENT_LOOP
-    for (int k = k0; k < k1; ++k) out[k] = value(uD, uE1, uE2, m, mu0, k, sD, s1, s2, ihD, ih1, ih2);
-  }
 };
 
-// All three components in one pass: the loads of u, v, w around a cell are shared (one sweep of
-// the velocity through the cache instead of three).
+// All three components in one pass, one cell per call: the GPU form (hosts run
+// kernels/momentum_sweep.hpp, which keeps each flux for the next cell instead of computing it again).
 template <bool Uniform>
 struct MomentumRhsAll {
   MomentumRhs<0, Uniform> fx;
@@ -73,11 +58,6 @@ struct MomentumRhsAll {
     fx(i, j, k);
     fy(i, j, k);
     fz(i, j, k);
-  }
-  void row(int i, int j, int k0, int k1) const {
-    fx.row(i, j, k0, k1);
-    fy.row(i, j, k0, k1);
-    fz.row(i, j, k0, k1);
   }
 };
 
@@ -94,12 +74,12 @@ inline void momentum_rhs_impl(const Velocity& rhs, const Velocity& u, const Fiel
                                    {inv_h[0], inv_h[1], inv_h[2]},
                                    {st[0], st[1], st[2]}};
     momentum_sweep(f, box, label);
-    return;
+  } else {
+    const MomentumRhsAll<Uniform> f{{rhs.c[0], u.c[0], u.c[1], u.c[2], mu, mu_uniform, {inv_h[0], inv_h[1], inv_h[2]}},
+                                    {rhs.c[1], u.c[0], u.c[1], u.c[2], mu, mu_uniform, {inv_h[0], inv_h[1], inv_h[2]}},
+                                    {rhs.c[2], u.c[0], u.c[1], u.c[2], mu, mu_uniform, {inv_h[0], inv_h[1], inv_h[2]}}};
+    for_each_cell(label, box, f);
   }
-  MomentumRhsAll<Uniform> f{{rhs.c[0], u.c[0], u.c[1], u.c[2], mu, mu_uniform, {inv_h[0], inv_h[1], inv_h[2]}},
-                            {rhs.c[1], u.c[0], u.c[1], u.c[2], mu, mu_uniform, {inv_h[0], inv_h[1], inv_h[2]}},
-                            {rhs.c[2], u.c[0], u.c[1], u.c[2], mu, mu_uniform, {inv_h[0], inv_h[1], inv_h[2]}}};
-  for_each_row(label, box, f);
 }
 
 // Fills rhs[D] over `box` for all three components with the constant viscosity mu.

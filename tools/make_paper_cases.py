@@ -36,9 +36,9 @@ RESOLUTIONS = {
 }
 
 
-# What the desk runs cost here: (time reached, wall seconds summed over restarts), one core of the
-# 2-core AMD EPYC development VM shared with a second run (/work/runs/campaign/wall_time.py on
-# the logs; the first 20 time units of We = 0.5 were the domain check's, 968 s).
+# What the desk runs cost here: (time reached, wall seconds summed over restarts, on what). The
+# EPYC figures are session 5's (/work/runs/campaign/wall_time.py on the logs of that VM), the Xeon
+# ones session 10's (each run's config.resolved.toml to summary.json times, one run to t = 60).
 _EPYC = "core of a 2-core AMD EPYC VM shared with a second run, session 5 code"
 _XEON = "core of a 2-core Intel Xeon VM (AVX-512) beside a second run and CI, session 10 code"
 DESK_MEASURED = {  # case: (t reached, wall seconds, where)

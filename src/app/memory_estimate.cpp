@@ -149,15 +149,13 @@ std::string describe_memory(const CaseConfig& cfg, const Grid& grid, const Comm&
 
 void refuse_if_out_of_memory(const CaseConfig& cfg, const Grid& grid, const Comm& comm) {
   const MemoryPool pool = memory_pool(comm);
-  const double avail = pool.bytes;
-  const int ranks = pool.ranks;
-  const double need = (estimate_memory(cfg, grid).peak_bytes() + kOverheadBytes) * ranks;
-  if (!comm.any(avail > 0.0 && need > avail)) return;
-  const std::string where = kHostMemory ? " on this node (" + std::to_string(ranks) + " rank(s)), which has "
+  const double need = (estimate_memory(cfg, grid).peak_bytes() + kOverheadBytes) * pool.ranks;
+  if (!comm.any(pool.bytes > 0.0 && need > pool.bytes)) return;
+  const std::string where = kHostMemory ? " on this node (" + std::to_string(pool.ranks) + " rank(s)), which has "
                                         : " on this rank's GPU, which has ";
   throw ConfigError(cfg.source + ": domain.cells = [" + std::to_string(cfg.domain.cells[0]) + ", " +
                     std::to_string(cfg.domain.cells[1]) + ", " + std::to_string(cfg.domain.cells[2]) + "] needs about " +
-                    gib(need) + where + gib(avail) + " available: use fewer cells, or more " +
+                    gib(need) + where + gib(pool.bytes) + " available: use fewer cells, or more " +
                     (kHostMemory ? "nodes" : "GPUs"));
 }
 

@@ -22,6 +22,7 @@
 #include "poisson/fftw_mpi_poisson.hpp"
 #include "poisson/fftw_mpi_r2r.hpp"
 #endif
+#include "support/field_compare.hpp"
 #include "support/mpi_env.hpp"
 
 namespace {
@@ -392,17 +393,8 @@ TEST(Poisson, DivergenceIntoTheBufferEqualsDivergenceThenSolve) {
   const eulerfsi::Box box = g.interior();
   solver.solve_divergence(direct, vel[0], vel[1], vel[2], g.h, 0.7, box);
   solver.eulerfsi::PoissonSolver::solve_divergence(reference, vel[0], vel[1], vel[2], g.h, 0.7, box);
-  auto a = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), direct);
-  auto b = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), reference);
-  double diff = 0.0, scale = 0.0;
-  for (int i = box.lo[0]; i < box.hi[0]; ++i)
-    for (int j = box.lo[1]; j < box.hi[1]; ++j)
-      for (int k = box.lo[2]; k < box.hi[2]; ++k) {
-        diff = std::max(diff, std::fabs(a(i, j, k) - b(i, j, k)));
-        scale = std::max(scale, std::fabs(b(i, j, k)));
-      }
-  diff = allreduce(diff, MPI_MAX);
-  scale = allreduce(scale, MPI_MAX);
+  const eulerfsi::test::FieldDifference d = eulerfsi::test::max_difference(direct, reference, box);
+  const double diff = allreduce(d.diff, MPI_MAX), scale = allreduce(d.scale, MPI_MAX);
   EXPECT_GT(scale, 1e-3);
   EXPECT_LE(diff, 1e-13 * scale);
   eulerfsi::Box shrunk = box;
