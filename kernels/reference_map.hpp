@@ -135,7 +135,7 @@ inline void rk3_vector_update(const Vector3& q, const Vector3& rhs, const Vector
 // The solid after a substep: level = 1 where the cell centre lies deeper than `margin` inside the
 // body (d < -margin) and the cell was known before (level in [1, reach]: the body moves less than a
 // cell per step, and an unknown cell's q is stale), else 0. Cells of the outer layer (-margin <= d)
-// are extrapolated from the deeper ones like the fluid side (see kSolidMarginCells).
+// are extrapolated from the deeper ones like the fluid side (solid.map_margin, src/solid/reference_map_model.cpp).
 inline void classify_solid(const WindowField& level, const Vector3& q, const ReferenceShape& shape, const CellCentres& xc,
                            double reach, double margin, bool initial, const double h[3], const Box& box) {
   const double i2h[3] = {0.5 / h[0], 0.5 / h[1], 0.5 / h[2]};

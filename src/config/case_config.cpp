@@ -33,7 +33,7 @@ const std::vector<Section>& schema() {
                 "frame_velocity"}},
       {"time", {"cfl", "dt", "t_end", "max_steps", "implicit_viscosity"}},
       {"output", {"dir", "every", "fields_every", "profiles_every", "checkpoint_every", "shape_times"}},
-      {"solid", {"shape", "diameter", "center", "thickness", "We", "viscosity_ratio", "initial_velocity", "sharpening", "model"}},
+      {"solid", {"shape", "diameter", "center", "thickness", "We", "viscosity_ratio", "initial_velocity", "sharpening", "model", "map_margin"}},
   };
   return s;
 }
@@ -592,6 +592,12 @@ void read_solids(const Reader& r, const toml::table& root, const DomainConfig& d
       r.fail(s + ".sharpening", s + ".sharpening = " + fmt_double(c.sharpening) +
                                     ": sharpening applies to " + s + ".model = \"paper\" only; the reference map "
                                     "derives a sharp psi from xi (set it to 0 or remove it)");
+    r.get(t, s, "map_margin", c.map_margin);
+    r.require(c.map_margin >= 0 && c.map_margin <= 1, t, s, "map_margin",
+              "must be in [0, 1] (cells inside the surface; 0 = the map carried up to the surface)");
+    if (c.model != SolidModelKind::ReferenceMap && c.map_margin > 0)
+      r.fail(s + ".map_margin", s + ".map_margin = " + fmt_double(c.map_margin) + ": applies to " + s +
+                                    ".model = \"reference-map\" only (set it to 0 or remove it)");
 
     if (c.shape == SolidShape::Layer) {
       if (d.geometry != Geometry::Channel && d.geometry != Geometry::Couette)
@@ -763,7 +769,8 @@ std::string to_toml(const CaseConfig& c) {
        << "viscosity_ratio = " << fmt_double(s.viscosity_ratio) << "\n"
        << "initial_velocity = " << toml_str(to_string(s.initial_velocity)) << "\n"
        << "sharpening = " << fmt_double(s.sharpening) << "\n"
-       << "model = " << toml_str(to_string(s.model)) << "\n";
+       << "model = " << toml_str(to_string(s.model)) << "\n"
+       << "map_margin = " << fmt_double(s.map_margin) << "\n";
   }
   return os.str();
 }

@@ -75,6 +75,7 @@ struct SolidConfig {
   double We = 1.0;               // G = 1 / We
   double viscosity_ratio = 1.0;  // mu_s / mu_f
   double sharpening = 0.0;       // interface sharpening pseudo-step per time step, in units of h (0: off)
+  double map_margin = 0.0;       // reference map: carried only deeper than this many cells inside the surface
   InitialSolidVelocity initial_velocity = InitialSolidVelocity::Fluid;
   SolidModelKind model = SolidModelKind::Paper;
 };

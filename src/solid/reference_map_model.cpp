@@ -23,13 +23,13 @@ constexpr double kMaxDerivedLevel = kBand;
 // A cell may turn solid only if it was within 2 cells of the body (level <= 3): the body moves
 // less than one cell per step (CFL < 1), and farther cells were advected with stale neighbours.
 constexpr double kSolidReach = 3.0;
-// The map is carried (transported) only on cells more than half a cell inside the surface; the
-// outer layer takes the least-squares extension of the deeper cells, as the fluid side does. Why:
-// labels carried in that layer drift by stencils that straddle the surface (O(h^2) per unit strain),
-// and the elastic stress, from central differences that the extension follows, does not restore
-// them: a stiff shear particle's (Ca = 0.0125, 8 cells per d) surface turned 0.087 rad per unit
-// strain away from the axes its B gave (0.012 with this margin; docs/REFERENCE_MAP.md).
-constexpr double kSolidMarginCells = 0.5;
+// solid.map_margin (cells): the map is carried only on cells deeper than that inside the surface;
+// the outer layer takes the least-squares extension of the deeper cells, as the fluid side does.
+// 0.5 stops the drift of labels carried in that layer by stencils that straddle the surface (a stiff
+// shear particle at Re_p 0.5, Ca = 0.0125, 8 cells per d: inclination 0.790 against 0.845, theory
+// 0.770), but the layer slaved to the deeper cells feeds the body's elastic oscillation where
+// viscosity damps it weakly (Re = 200, We = 0.125 released in a pipe: it never decays, D grows to
+// 0.15); so 0 by default (docs/REFERENCE_MAP.md, "The margin and the elastic oscillation").
 // Half-width of the smoothed Heaviside, in cells along the surface normal: psi goes from 0 to 1
 // over 3 cells.
 constexpr double kHalfWidthCells = 1.5;
@@ -173,7 +173,7 @@ WindowField ReferenceMapModel::psi_at_half_width(const SolidBody&, double width_
 
 // The margin in length: along the finest spacing (the layer grids are coarse along the surface).
 double ReferenceMapModel::solid_margin() const {
-  return kSolidMarginCells * std::min(grid_.h[0], std::min(grid_.h[1], grid_.h[2]));
+  return cfg_solid_.map_margin * std::min(grid_.h[0], std::min(grid_.h[1], grid_.h[2]));
 }
 
 void ReferenceMapModel::advance_substep(SolidBody& body, const kernels::Velocity& vel, double dt, int substep) {

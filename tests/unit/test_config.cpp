@@ -66,6 +66,8 @@ void expect_same(const CaseConfig& a, const CaseConfig& b) {
     EXPECT_EQ(a.solids[i].We, b.solids[i].We);
     EXPECT_EQ(a.solids[i].viscosity_ratio, b.solids[i].viscosity_ratio);
     EXPECT_EQ(a.solids[i].initial_velocity, b.solids[i].initial_velocity);
+    EXPECT_EQ(a.solids[i].model, b.solids[i].model);
+    EXPECT_EQ(a.solids[i].map_margin, b.solids[i].map_margin);
   }
 }
 
@@ -115,6 +117,8 @@ initial_velocity = "rest"
 
 [[solid]]
 center = [3.0, -0.1, 0.1]
+model = "reference-map"
+map_margin = 0.5
 )";
 
 std::string test_data() {
@@ -187,6 +191,8 @@ TEST(Config, EverySectionIsRead) {
   EXPECT_EQ(c.solids[1].diameter, SolidConfig{}.diameter);
   EXPECT_EQ(c.solids[1].We, SolidConfig{}.We);
   EXPECT_EQ(c.solids[1].initial_velocity, InitialSolidVelocity::Fluid);
+  EXPECT_EQ(c.solids[1].map_margin, 0.5);
+  EXPECT_EQ(c.solids[0].map_margin, SolidConfig{}.map_margin);
 }
 
 TEST(Config, CouetteWithLayer) {
@@ -427,6 +433,12 @@ TEST(ConfigErrors, Layers) {
   expect_error("[[solid]]\nWe = 0\n", {"solid[0].We = 0", "> 0"});
   expect_error("[[solid]]\nviscosity_ratio = -1\n", {"solid[0].viscosity_ratio = -1", ">= 0"});
   expect_error("[[solid]]\ninitial_velocity = \"moving\"\n", {"solid[0].initial_velocity", "\"rest\", \"fluid\""});
+}
+
+TEST(ConfigErrors, MapMarginBelongsToTheReferenceMap) {
+  expect_error("[[solid]]\nmap_margin = 0.5\n", {"solid[0].map_margin = 0.5", "\"reference-map\" only"});
+  expect_error("[[solid]]\nmodel = \"reference-map\"\nmap_margin = 1.5\n", {"solid[0].map_margin = 1.5", "[0, 1]"});
+  expect_error("[[solid]]\nmodel = \"reference-map\"\nmap_margin = -0.1\n", {"solid[0].map_margin = -0.1", "[0, 1]"});
 }
 
 TEST(ConfigErrors, MissingFile) {
