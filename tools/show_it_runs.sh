@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Issue 9's show-it set: Re = 100, r0/R = 0.2828, released at rest, grid following the particle,
-# Lx = 2, the paper's sharp wall, CFL 0.2, to t = 20; both models at 8 and 12 cells per d, We = 4
+# Lx = 2, the paper's sharp wall, CFL 0.2, to t = 20, the map with solid.map_margin = 0.5 (the
+# default of sessions 6-10); both models at 8 and 12 cells per d, We = 4
 # and 0.125; the map also at 16 cells per d (the convergence check of docs/REFERENCE_MAP.md). Runs
 # live outside the repo (RUNS, default /work/runs/show) and are checkpointed; the
 # same command continues a run from its checkpoint.
@@ -21,7 +22,8 @@ case_args() {  # NAME -> the case file and --set arguments of that run
   if [ "$we" = 4 ]; then echo -n "$root/cases/validation/migration_soft.toml"
   else echo -n "$root/cases/validation/migration_stiff.toml"; fi
   echo -n " --set flow.pipe_wall=\"sharp\" --set time.t_end=$t_end --set output.checkpoint_every=200"
-  [ "$model" = map ] && echo -n " --set solid[0].model=\"reference-map\""
+  # the set was run with the map carried from half a cell inside the surface (sessions 6-10)
+  [ "$model" = map ] && echo -n " --set solid[0].model=\"reference-map\" --set solid[0].map_margin=0.5"
   [ "$cells" = 12 ] && echo -n " --set domain.cells=[120,60,60]"
   [ "$cells" = 16 ] && echo -n " --set domain.cells=[160,80,80]"
   echo
