@@ -36,6 +36,15 @@ run $plot forces $runs --out "$F/forces.png";              check_file "$F/forces
 run $plot flow "$R/re400_we4" --out "$F/flow.png";         check_file "$F/flow.png"
 run $plot flow "$R/flow_only";                             check_file "$R/flow_only/flow.png"
 
+# campaign_table.py: one row per run; r/R at t = 10 is particle.csv's last row at or before t = 10
+table="$py $root/tools/campaign_table.py"
+run $table $runs --times 1,10
+[ "$(grep -c '^| re' "$work/last.log")" = 3 ] && echo "ok: campaign_table rows" || { fail "campaign_table rows"; cat "$work/last.log"; }
+want=$($py -c "import csv,sys; r=[x for x in csv.DictReader(open(sys.argv[1])) if float(x['t'])<=10+1e-9][-1]; print('%.3f, %.3f' % (float(r['r_over_R']), float(r['taylor_D'])))" "$R/re200_we0.5/particle.csv")
+grep -q "^| re200_we0.5 | .* | $want |" "$work/last.log" && echo "ok: campaign_table r/R at t = 10 ($want)" ||
+  { fail "campaign_table: r/R, D at t = 10 is not $want"; cat "$work/last.log"; }
+expect_rc 2 $table "$work/no_such_run"
+
 # all: includes a flow-only run, whose missing files must give notes, not tracebacks
 run $plot all $runs "$R/flow_only" --out "$F/all"
 for f in radial trajectory forces tcen trev_tosc flow_flow_only flow_re400_we4 shapes_re200_we0.5; do
