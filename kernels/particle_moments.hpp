@@ -41,7 +41,9 @@ struct BodyForces {
 // The body's momentum P = sum psi u_c dV and the forces that change it, each term as the solver
 // discretises it (grid frame; P and dP/dt are the same in the laboratory, x being periodic):
 //   dP/dt = sum psi du_c/dt + sum u_c dpsi/dt
-//   pressure = -sum psi grad p;  inertia = -sum psi div(u u) - sum u_c div^WENO(u psi);
+//   pressure = -sum psi grad p;  inertia = -sum psi div(u u) + sum u_c dpsi/dt, with
+//   dpsi/dt = -div^WENO(u psi) (the paper model's transport) or, where psi is derived (the
+//   reference map), (psi - psi_step_start) / dt over the last step;
 //   viscous = sum psi div(2 mu(psi) E), mu = mu_f + psi (mu_s - mu_f);
 //   elastic = sum psi div[psi G ((B + B_prev)/2 - I)]   (the stress of the last substep)
 // each face term averaged over the cell's two D-faces, as u_c is.
@@ -241,9 +243,12 @@ KOKKOS_INLINE_FUNCTION double mixture_viscous_at_face(const Velocity& vel, const
 }
 
 // One term of BodyMomentum in direction D at cell (i,j,k), psi weight included.
+// psi0, inv_dt: psi at the last step's start and 1 / its dt where dpsi/dt is psi's change over
+// that step (step_difference), else unused.
 template <int D>
 KOKKOS_INLINE_FUNCTION double momentum_term(int term, const WindowField& psi, const Field3& p, const Velocity& vel,
                                             const Tensor6& b, const Tensor6& bp, double G, double mu_f, double dmu,
+                                            const WindowField& psi0, double inv_dt, bool step_difference,
                                             const double inv_h[3], int i, int j, int k) {
   constexpr int di = Unit<D>::i, dj = Unit<D>::j, dk = Unit<D>::k;
   const double w = psi(i, j, k);
@@ -252,8 +257,10 @@ KOKKOS_INLINE_FUNCTION double momentum_term(int term, const WindowField& psi, co
     case 0: return w * uc;
     case 1: return w * force_term<D>(0, p, vel, b, G, 0.0, 0.0, inv_h, i, j, k);
     case 2: {
-      // the transport of psi carries momentum in and out: u_c dpsi/dt, with the solver's fluxes
-      const double dpsi = star_max(psi, i, j, k) == 0.0 ? 0.0 : -weno_divergence(psi, vel.c[0], vel.c[1], vel.c[2], inv_h, i, j, k);
+      // the transport of psi carries momentum in and out: u_c dpsi/dt, as psi actually changes
+      const double dpsi = step_difference             ? (w - psi0(i, j, k)) * inv_dt
+                          : star_max(psi, i, j, k) == 0.0 ? 0.0
+                                                        : -weno_divergence(psi, vel.c[0], vel.c[1], vel.c[2], inv_h, i, j, k);
       return (w == 0.0 ? 0.0 : w * force_term<D>(1, p, vel, b, G, 0.0, 0.0, inv_h, i, j, k)) + uc * dpsi;
     }
     case 3:
@@ -275,12 +282,15 @@ struct MomentumTerm {
   Velocity vel;
   Tensor6 b, bp;
   double G, mu_f, dmu;
+  WindowField psi0;
+  double inv_dt;
+  bool step_difference;
   double inv_h[3];
   int term, dir;
   KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k, double& acc) const {
-    acc += dir == 0   ? momentum_term<0>(term, psi, p, vel, b, bp, G, mu_f, dmu, inv_h, i, j, k)
-           : dir == 1 ? momentum_term<1>(term, psi, p, vel, b, bp, G, mu_f, dmu, inv_h, i, j, k)
-                      : momentum_term<2>(term, psi, p, vel, b, bp, G, mu_f, dmu, inv_h, i, j, k);
+    acc += dir == 0   ? momentum_term<0>(term, psi, p, vel, b, bp, G, mu_f, dmu, psi0, inv_dt, step_difference, inv_h, i, j, k)
+           : dir == 1 ? momentum_term<1>(term, psi, p, vel, b, bp, G, mu_f, dmu, psi0, inv_dt, step_difference, inv_h, i, j, k)
+                      : momentum_term<2>(term, psi, p, vel, b, bp, G, mu_f, dmu, psi0, inv_dt, step_difference, inv_h, i, j, k);
   }
 };
 
@@ -345,17 +355,20 @@ inline BodyForces body_forces(const WindowField& psi, const Field3& p, const Vel
 }
 
 // The body's momentum and the forces that change it (BodyMomentum), in the grid's frame; needs
-// three ghost layers of psi (WENO) and one of p, u, B.
+// three ghost layers of psi (WENO) and one of p, u, B. psi_step_start (allocated: the map) and
+// inv_dt: dpsi/dt from psi's change over the last step instead of the WENO transport.
 inline BodyMomentum body_momentum(const WindowField& psi, const Field3& p, const Velocity& vel, const Tensor6& b,
                                   const Tensor6& b_prev, double G, double mu_f, double mu_s, const double h[3],
-                                  const Box& box) {
+                                  const Box& box, const WindowField& psi_step_start = WindowField(),
+                                  double inv_dt = 0.0) {
+  const bool step_difference = psi_step_start.allocated();
   const double dv = h[0] * h[1] * h[2];
   BodyMomentum r{};
   double* out[5] = {r.momentum, r.pressure, r.inertia, r.viscous, r.elastic};
   for (int term = 0; term < 5; ++term)
     for (int d = 0; d < 3; ++d) {
-      detail::MomentumTerm f{psi, p, vel, b, b_prev, G, mu_f, mu_s - mu_f, {1.0 / h[0], 1.0 / h[1], 1.0 / h[2]},
-                             term, d};
+      detail::MomentumTerm f{psi,     p,      vel, b, b_prev, G, mu_f, mu_s - mu_f, psi_step_start, inv_dt,
+                             step_difference, {1.0 / h[0], 1.0 / h[1], 1.0 / h[2]}, term, d};
       out[term][d] = dv * detail::sum_over("eulerfsi::diag::body_momentum", box, f);
     }
   return r;

@@ -222,8 +222,9 @@ std::vector<ParticleState> ParticleTracker::measure(const SolidPhase& solids, co
     }
     sum_all(comm_, f);
     for (int term = 0; term < 4; ++term) s.force_paper[term] = radial_part(f + 3 * term, s.radial_dir);
+    const SolidModel::StepStart start = body.model ? body.model->psi_at_step_start() : SolidModel::StepStart{};
     auto budget = kernels::body_momentum(body.psi, flow.p_step, flow.vel, body.b, body.b_prev, body.G, 1.0 / cfg_.flow.Re,
-                                         body.mu_s, grid_.h, box);
+                                         body.mu_s, grid_.h, box, start.psi, start.inv_dt);
     double g[15];
     double* parts[5] = {budget.momentum, budget.pressure, budget.inertia, budget.viscous, budget.elastic};
     for (int q = 0; q < 5; ++q)

@@ -83,6 +83,7 @@ std::vector<SolidWindow::Member> ReferenceMapModel::window_members(SolidBody& bo
     m.push_back({&rhs_.c[a], 0.0, "xi_rhs"});
     m.push_back({&rhs_old_.c[a], 0.0, "xi_rhs_old"});
   }
+  m.push_back({&psi_step_start_, 0.0, "psi_step_start"});
   if (psi_other_width_.allocated()) m.push_back({&psi_other_width_, 0.0, "psi_other_width"});
   return m;
 }
@@ -178,6 +179,10 @@ double ReferenceMapModel::solid_margin() const {
 
 void ReferenceMapModel::advance_substep(SolidBody& body, const kernels::Velocity& vel, double dt, int substep) {
   const Box box = active_;
+  if (substep == 0) {  // psi and B share one window: the same extents
+    Kokkos::deep_copy(psi_step_start_.data, body.psi.data);
+    step_inv_dt_ = 1.0 / dt;
+  }
   // dq/dt = -u - u . grad q on the known cells (WENO5, RK3)
   kernels::reference_map_rhs(rhs_, q_, level_, vel, grid_.h, box);
   kernels::rk3_vector_update(q_, rhs_, rhs_old_, dt, Rk3::gamma[substep], Rk3::zeta[substep], box);

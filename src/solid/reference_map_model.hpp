@@ -34,6 +34,7 @@ class ReferenceMapModel final : public SolidModel {
   Box active_box() const override { return active_; }
   double edge_half_width_cells() const override;
   WindowField psi_at_half_width(const SolidBody& body, double width_cells) override;
+  StepStart psi_at_step_start() const override { return {psi_step_start_, step_inv_dt_}; }
 
   // Every kernel on the whole slab instead of the active box, every field on the whole slab
   // instead of the window: the reference the box is tested against (tests/mpi/test_active_box.cpp);
@@ -73,6 +74,10 @@ class ReferenceMapModel final : public SolidModel {
   kernels::Vector3 q_, rhs_, rhs_old_;
   WindowField level_;
   WindowField psi_other_width_;  // the diagnostics' second psi, allocated on first use
+  // psi at the start of the last step and 1 / its dt (0 before a step): the radial-momentum
+  // budget's dpsi/dt (psi is derived, not transported by the solver's fluxes)
+  WindowField psi_step_start_;
+  double step_inv_dt_ = 0.0;
   // The owned cells within reach of the body: the bounding box of the known cells (ghosts
   // included, so a body about to cross into this rank's slab is seen) grown by two cells. Every
   // kernel runs on it; outside it q is not used, psi = 0 and B = I.

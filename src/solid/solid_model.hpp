@@ -59,6 +59,14 @@ class SolidModel {
   // empty field where psi is transported (the paper model).
   virtual double edge_half_width_cells() const { return 0.0; }
   virtual WindowField psi_at_half_width(const SolidBody&, double /*width_cells*/) { return WindowField(); }
+  // Where psi is not the solver's conservative WENO transport (the reference map derives it), the
+  // radial-momentum budget takes dpsi/dt from psi's change over the last step: psi at that step's
+  // start and 1 / its dt (0 before the first step); an empty field where dpsi/dt = -div(u psi).
+  struct StepStart {
+    WindowField psi;
+    double inv_dt = 0.0;
+  };
+  virtual StepStart psi_at_step_start() const { return {}; }
 };
 
 std::shared_ptr<SolidModel> make_solid_model(const SolidConfig& solid, const CaseConfig& cfg, const Grid& grid,

@@ -53,13 +53,14 @@ double whole_centroid_y(test::CoupledCase& run) {
   return run.comm.sum(sum[1]) / run.comm.sum(sum[0]);
 }
 
-Budget pipe_run(bool follow, int steps) {
+Budget pipe_run(bool follow, int steps, SolidModelKind model = SolidModelKind::Paper) {
   CaseConfig cfg = test::small_case(Geometry::Pipe, 24, 24, 24, 1.0, 1.0, 1.0, 100.0, InitialFlow::Laminar);
   SolidConfig sphere;
   sphere.diameter = 0.3;
   sphere.center = {0.5, 0.15, 0.0};
   sphere.We = 1.0;
   sphere.initial_velocity = InitialSolidVelocity::Fluid;
+  sphere.model = model;
   cfg.solids.push_back(sphere);
   test::CoupledCase run(cfg);
   Budget b;
@@ -96,17 +97,9 @@ void report(const char* name, const Budget& b) {
               100.0 * (b.integral_paper / b.change - 1.0), b.rows.front().r, b.rows.back().r);
 }
 
-}  // namespace
-
-TEST(ParticleForce, RadialForceChangesTheRadialMomentum) {
-  const Budget b = pipe_run(true, 120);
-  report("grid following the particle", b);
-  EXPECT_NEAR(b.integral, b.change, 0.01 * std::fabs(b.change));
-  // the paper's sum is int psi du_r/dt, not the particle's dP_r/dt
-  EXPECT_GT(std::fabs(b.integral_paper - b.change), 5.0 * std::fabs(b.change));
-
-  // the centroid's radial acceleration over stretches of 10 steps: the change of its velocity,
-  // by central differences of r(t); F_r integrated over the same stretch must have its sign
+// The centroid's radial acceleration over stretches of 10 steps: the change of its velocity, by
+// central differences of r(t); F_r integrated over the same stretch must have its sign.
+void expect_force_follows_acceleration(const Budget& b) {
   const auto& r = b.rows;
   auto velocity = [&r](size_t n) { return (r[n + 1].r - r[n - 1].r) / (r[n + 1].t - r[n - 1].t); };
   std::vector<double> dv, impulse;
@@ -129,6 +122,17 @@ TEST(ParticleForce, RadialForceChangesTheRadialMomentum) {
   EXPECT_GE(checked, 5);
 }
 
+}  // namespace
+
+TEST(ParticleForce, RadialForceChangesTheRadialMomentum) {
+  const Budget b = pipe_run(true, 120);
+  report("grid following the particle", b);
+  EXPECT_NEAR(b.integral, b.change, 0.01 * std::fabs(b.change));
+  // the paper's sum is int psi du_r/dt, not the particle's dP_r/dt
+  EXPECT_GT(std::fabs(b.integral_paper - b.change), 5.0 * std::fabs(b.change));
+  expect_force_follows_acceleration(b);
+}
+
 TEST(ParticleForce, OnAGridAtRestTheBudgetClosesToOrderDt) {
   const Budget b = pipe_run(false, 120);
   report("grid at rest", b);
@@ -136,4 +140,14 @@ TEST(ParticleForce, OnAGridAtRestTheBudgetClosesToOrderDt) {
   // the paper's sum points to the axis while the particle accelerates outwards
   EXPECT_GT(b.change, 0.0);
   EXPECT_LT(b.integral_paper, 0.0);
+}
+
+// The same with the reference map (the campaign's model): its psi is derived from the map, not
+// moved by the solver's WENO fluxes, so the budget takes dpsi/dt from psi's change over the step
+// (with -div^WENO(u psi) instead it was off by -11.3 %). Measured: -0.84 %.
+TEST(ParticleForce, ReferenceMapRadialForceChangesTheRadialMomentum) {
+  const Budget b = pipe_run(true, 120, SolidModelKind::ReferenceMap);
+  report("reference map, grid following the particle", b);
+  EXPECT_NEAR(b.integral, b.change, 0.01 * std::fabs(b.change));
+  expect_force_follows_acceleration(b);
 }
