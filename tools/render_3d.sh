@@ -11,8 +11,12 @@ render() {
   if [ -n "${DISPLAY:-}" ]; then pvbatch "$here/eulerfsi_render.py" "$run" --out "$out" "$@"
   else xvfb-run -a -s "-screen 0 1280x1024x24" pvbatch "$here/eulerfsi_render.py" "$run" --out "$out" "$@"; fi
 }
-# a virtual display that has just started sometimes refuses pvbatch's first connection: try twice
-if ! render "$@" 2> "$out.log"; then
-  sleep 2
-  render "$@" 2> "$out.log" || { grep -v "^ *[0-9][0-9]* *0x" "$out.log" | sed 's/\x1b\[[0-9;]*m//g' | tail -5 >&2; exit 1; }
-fi
+# a virtual display that has just started sometimes refuses pvbatch's connection (pvbatch then
+# aborts; seen twice in a row on a loaded 2-core machine): up to four tries, waiting longer each time
+for wait_s in 2 4 8 0; do
+  render "$@" 2> "$out.log" && exit 0
+  [ "$wait_s" = 0 ] && break
+  sleep "$wait_s"
+done
+grep -v "^ *[0-9][0-9]* *0x" "$out.log" | sed 's/\x1b\[[0-9;]*m//g' | tail -5 >&2
+exit 1
