@@ -39,12 +39,14 @@ RESOLUTIONS = {
 # What the desk runs cost here: (time reached, wall seconds summed over restarts, on what). The
 # EPYC figures are session 5's (/work/runs/campaign/wall_time.py on the logs of that VM), the Xeon
 # ones session 10's (each run's config.resolved.toml to summary.json times, one run to t = 60).
-_EPYC = "core of a 2-core AMD EPYC VM shared with a second run, session 5 code"
 _XEON = "core of a 2-core Intel Xeon VM (AVX-512) beside a second run and CI, session 10 code"
+_XEON11 = "core of a 2-core Intel Xeon VM (AVX-512) beside a second run and the test suite or CI, session 11 code"
 DESK_MEASURED = {  # case: (t reached, wall seconds, where)
-    "re200_we4_r0.2828_visc1": (60.0, 348, _XEON),
-    "re200_we0.5_r0.2828_visc1": (60.0, 465, _XEON),
-    "re200_we0.125_r0.2828_visc1": (39.6, 4076, _EPYC),
+    "re200_we4_r0.2828_visc1": (60.0, 411, _XEON11),
+    "re200_we0.5_r0.2828_visc1": (60.0, 1022, _XEON11),
+    "re200_we0.125_r0.2828_visc1": (60.0, 736, _XEON11),
+    "re100_we4_r0.2828_visc1": (60.0, 522, _XEON11),
+    "re100_we0.5_r0.2828_visc1": (60.0, 1631, _XEON11),
 }
 
 
