@@ -41,8 +41,10 @@ if [ -f "$runs/re200_we4_$s/shapes/index.csv" ]; then                           
   $plot shapes "$runs/re200_we4_$s" --times 0 5 10 20 40 --out "$out/shapes_re200_we4.png" &&
     echo "[campaign_figures] $out/shapes_re200_we4.png" || status=1
 fi
+# t_rev, T_osc and t_cen against We and Re: the runs from r0 = 0.2828 R at mu_s/mu_f = 1 (the other
+# starts and viscosity ratios would sit on the same We as extra points)
 all=()
-for d in "$runs"/*/; do [ -f "$d/summary.json" ] && all+=("${d%/}"); done
+for d in "$runs"/*_r0.2828_visc1/; do [ -f "$d/summary.json" ] && all+=("${d%/}"); done
 if [ ${#all[@]} -gt 0 ]; then                                                            # fig. 4, 5, 11
   # no run may have reached the axis: then there is no t_cen to plot, which is a result, not a failure
   $plot tcen "${all[@]}" --out "$out/tcen.png" && echo "[campaign_figures] $out/tcen.png" ||
