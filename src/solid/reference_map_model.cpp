@@ -179,7 +179,7 @@ double ReferenceMapModel::solid_margin() const {
 
 void ReferenceMapModel::advance_substep(SolidBody& body, const kernels::Velocity& vel, double dt, int substep) {
   const Box box = active_;
-  if (substep == 0) {  // psi and B share one window: the same extents
+  if (substep == 0) {  // psi and its step-start copy move with one window: the same extents
     Kokkos::deep_copy(psi_step_start_.data, body.psi.data);
     step_inv_dt_ = 1.0 / dt;
   }

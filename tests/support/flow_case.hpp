@@ -39,6 +39,11 @@ struct CoupledCase {
     set_initial_state(flow, solids);
   }
   ParticleState particle() { return tracker.measure(solids, flow.state())[0]; }
+  // The grid takes solid 0's mean x-velocity at time t, as the run loop does for
+  // flow.frame_velocity = "particle".
+  void follow_particle(double t) {
+    flow.set_frame_velocity(tracker.mean_x_velocity(solids, flow.state(), 0, flow.frame_velocity()), t);
+  }
 };
 
 // max |u|, |v|, |w| over the owned cells of every rank.

@@ -66,10 +66,7 @@ Budget pipe_run(bool follow, int steps, SolidModelKind model = SolidModelKind::P
   Budget b;
   double t = 0.0;
   auto follow_and_record = [&] {
-    // as the run loop does for flow.frame_velocity = "particle"
-    if (follow)
-      run.flow.set_frame_velocity(
-          run.tracker.mean_x_velocity(run.solids, run.flow.state(), 0, run.flow.frame_velocity()), t);
+    if (follow) run.follow_particle(t);
     const GridFrame frame{run.flow.frame_velocity(), run.flow.frame_offset()};
     const ParticleState s = run.tracker.measure(run.solids, run.flow.state(), frame)[0];
     b.rows.push_back({t, whole_centroid_y(run), s.momentum_r, s.force_total(), s.force_paper_total()});

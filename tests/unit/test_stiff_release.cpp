@@ -47,9 +47,7 @@ TEST(StiffRelease, ElasticOscillationDecaysToTheSmallDeformation) {
 
   double max_d = 0.0;
   test::run_flow(run.flow, 1.0, [&](double t) {
-    // the grid follows the particle, as `eulerfsi run` does with flow.frame_velocity = "particle"
-    run.flow.set_frame_velocity(
-        run.tracker.mean_x_velocity(run.solids, run.flow.state(), 0, run.flow.frame_velocity()), t);
+    run.follow_particle(t);
     if (t >= 0.7) max_d = std::max(max_d, run.particle().taylor_D);
   }, &run.solids);
   if (test::rank() == 0)
