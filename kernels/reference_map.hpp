@@ -100,15 +100,19 @@ KOKKOS_INLINE_FUNCTION double smoothed_delta(double s, double eps) {
   return 0.5 * (1.0 + compat::cos(pi * s / eps)) / eps;
 }
 
-// rhs_a = -u_a - u . grad q_a on every known cell (level >= 1), 0 elsewhere;
-// u . grad q = div_h^WENO(u q) - q div_h(u), u_a at the centre = mean of the two a-faces.
-inline void reference_map_rhs(const Vector3& rhs, const Vector3& q, const WindowField& level, const Velocity& vel,
-                              const double h[3], const Box& box) {
+// rhs_a = -u_a - u . grad q_a on the solid (level 1) and on the known cells where psi > 0, 0
+// elsewhere; u . grad q = div_h^WENO(u q) - q div_h(u), u_a at the centre = mean of the two a-faces.
+// A known cell outside the solid keeps its advected q only if it turns solid, and one with psi = 0
+// is at least psi's half-width (1.5 cells) outside the surface, which moves less than a cell per
+// step: it is extrapolated anew instead.
+inline void reference_map_rhs(const Vector3& rhs, const Vector3& q, const WindowField& level, const WindowField& psi,
+                              const Velocity& vel, const double h[3], const Box& box) {
   const double ih0 = 1.0 / h[0], ih1 = 1.0 / h[1], ih2 = 1.0 / h[2];
   const Field3 u = vel.c[0], v = vel.c[1], w = vel.c[2];
   const Vector3 r = rhs, m = q;
   for_each_cell("eulerfsi::refmap::rhs", box, KOKKOS_LAMBDA(int i, int j, int k) {
-    if (level(i, j, k) < kLevelSolid) {
+    const double l = level(i, j, k);
+    if (l < kLevelSolid || (l > kLevelSolid && psi(i, j, k) == 0.0)) {
       for (int a = 0; a < 3; ++a) r.c[a](i, j, k) = 0.0;
       return;
     }
@@ -164,32 +168,26 @@ struct ExtrapolationSweep {
   WindowField level;
   double s;
 
-  // Solves the 4x4 system M c = b (Gaussian elimination, partial pivoting) for c[0]; false if singular.
-  KOKKOS_INLINE_FUNCTION static bool solve4(double M[4][4], double b[4][3], double out[3]) {
-    for (int col = 0; col < 4; ++col) {
-      int p = col;
-      for (int r = col + 1; r < 4; ++r)
-        if (compat::fabs(M[r][col]) > compat::fabs(M[p][col])) p = r;
-      if (compat::fabs(M[p][col]) < 1e-10 * compat::fabs(M[0][0])) return false;
-      if (p != col) {
-        for (int c = 0; c < 4; ++c) { const double t = M[col][c]; M[col][c] = M[p][c]; M[p][c] = t; }
-        for (int c = 0; c < 3; ++c) { const double t = b[col][c]; b[col][c] = b[p][c]; b[p][c] = t; }
-      }
-      for (int r = col + 1; r < 4; ++r) {
-        const double f = M[r][col] / M[col][col];
-        for (int c = col; c < 4; ++c) M[r][c] -= f * M[col][c];
-        for (int c = 0; c < 3; ++c) b[r][c] -= f * b[col][c];
-      }
-    }
-    for (int c = 0; c < 3; ++c) {
-      double x[4];
-      for (int r = 3; r >= 0; --r) {
-        double v = b[r][c];
-        for (int m = r + 1; m < 4; ++m) v -= M[r][m] * x[m];
-        x[r] = v / M[r][r];
-      }
-      out[c] = x[0];
-    }
+  // c0 of the normal equations [[S, m^T], [m, A]] (c0, c) = (b0, b) of the basis (1, r), by the
+  // Schur complement: c0 = (b0 - m^T A^-1 b) / (S - m^T A^-1 m), with A^-1 m by cofactors (A, the
+  // weighted second moments of the offsets, is symmetric positive definite unless the points lie
+  // in a plane through the cell). False (the caller takes the weighted mean) where A or the
+  // complement is singular: the points do not span a linear fit.
+  KOKKOS_INLINE_FUNCTION static bool fit_centre(double S, const double m[3], const double A[6], const double b0[3],
+                                                const double b[3][3], double out[3]) {
+    // A = [[A0, A3, A4], [A3, A1, A5], [A4, A5, A2]]: cofactors of the symmetric matrix
+    const double c00 = A[1] * A[2] - A[5] * A[5], c01 = A[4] * A[5] - A[3] * A[2], c02 = A[3] * A[5] - A[4] * A[1];
+    const double c11 = A[0] * A[2] - A[4] * A[4], c12 = A[3] * A[4] - A[0] * A[5], c22 = A[0] * A[1] - A[3] * A[3];
+    const double det = A[0] * c00 + A[3] * c01 + A[4] * c02;
+    const double scale = (A[0] + A[1] + A[2]) * (1.0 / 3.0);
+    if (!(det > 1e-12 * scale * scale * scale)) return false;
+    const double inv = 1.0 / det;
+    const double y[3] = {(c00 * m[0] + c01 * m[1] + c02 * m[2]) * inv, (c01 * m[0] + c11 * m[1] + c12 * m[2]) * inv,
+                         (c02 * m[0] + c12 * m[1] + c22 * m[2]) * inv};
+    const double schur = S - (y[0] * m[0] + y[1] * m[1] + y[2] * m[2]);
+    if (!(schur > 1e-10 * S)) return false;
+    const double inv_schur = 1.0 / schur;
+    for (int d = 0; d < 3; ++d) out[d] = (b0[d] - (y[0] * b[0][d] + y[1] * b[1][d] + y[2] * b[2][d])) * inv_schur;
     return true;
   }
 
@@ -240,12 +238,12 @@ struct ExtrapolationSweep {
           rhs[3][d] += swcq[d];
         }
       }
-    double M[4][4] = {{S, Sa, Sb, Sc}, {Sa, Saa, Sab, Sac}, {Sb, Sab, Sbb, Sbc}, {Sc, Sac, Sbc, Scc}};
-    // the fallback, the weighted mean, is row 0 (solve4 overwrites it)
-    const double wsum = M[0][0], mean[3] = {rhs[0][0], rhs[0][1], rhs[0][2]};
+    const double m[3] = {Sa, Sb, Sc}, A[6] = {Saa, Sbb, Scc, Sab, Sac, Sbc};
+    const double b[3][3] = {{rhs[1][0], rhs[1][1], rhs[1][2]}, {rhs[2][0], rhs[2][1], rhs[2][2]},
+                            {rhs[3][0], rhs[3][1], rhs[3][2]}};
     double value[3];
-    if (!solve4(M, rhs, value))
-      for (int d = 0; d < 3; ++d) value[d] = mean[d] / wsum;
+    if (!fit_centre(S, m, A, rhs[0], b, value))
+      for (int d = 0; d < 3; ++d) value[d] = rhs[0][d] / S;  // the weighted mean
     for (int d = 0; d < 3; ++d) q.c[d](i, j, k) = value[d];
     level(i, j, k) = s + 1.0;
   }
@@ -327,15 +325,17 @@ inline void psi_from_map(const WindowField& psi, const Vector3& q, const WindowF
   });
 }
 
-// sum psi and sum |grad psi| (central differences) over the box, times the cell volume: the
-// body's volume and surface area (dV/dshift of the level shift, for the volume correction).
-inline void volume_and_area(const WindowField& psi, const double h[3], const Box& box, double& volume, double& area) {
+// sum psi and sum |grad psi| (central differences), times the cell volume: the body's volume and
+// surface area (dV/dshift of the level shift, for the volume correction), each over a box that
+// holds every cell where it is non-zero (psi's, and psi's grown by one for the gradient).
+inline void volume_and_area(const WindowField& psi, const double h[3], const Box& box, const Box& gradient_box,
+                            double& volume, double& area) {
   const double i0 = 0.5 / h[0], i1 = 0.5 / h[1], i2 = 0.5 / h[2], dv = h[0] * h[1] * h[2];
   double v = 0.0, a = 0.0;
   reduce_cells("eulerfsi::refmap::volume", box, KOKKOS_LAMBDA(int i, int j, int k, double& acc) {
     acc += psi(i, j, k) * dv;
   }, Kokkos::Sum<double>(v));
-  reduce_cells("eulerfsi::refmap::area", box, KOKKOS_LAMBDA(int i, int j, int k, double& acc) {
+  reduce_cells("eulerfsi::refmap::area", gradient_box, KOKKOS_LAMBDA(int i, int j, int k, double& acc) {
     const double gx = (psi(i + 1, j, k) - psi(i - 1, j, k)) * i0;
     const double gy = (psi(i, j + 1, k) - psi(i, j - 1, k)) * i1;
     const double gz = (psi(i, j, k + 1) - psi(i, j, k - 1)) * i2;

@@ -13,6 +13,7 @@
 // then see the solid's own B upwind instead of the fluid's strain.
 #include "core/launch.hpp"
 #include "core/types.hpp"
+#include "kernels/bounding_box.hpp"
 #include "kernels/solid_fields.hpp"
 #include "kernels/solid_transport.hpp"
 
@@ -72,27 +73,6 @@ inline void reset_unknown_tensor(const Tensor6& b, const Field3& known, const Bo
 // as their mirror image), and no exchange is needed between sweeps.
 // Sweep s can only reach cells within s face steps of a known one, so the sweeps run on the
 // bounding box of the known cells grown by s (the particle, not the whole domain).
-// Returns false when there is no known cell in `box`.
-inline bool known_bounding_box(const WindowField& known, const Box& box, Box& out) {
-  int lo[3], hi[3];
-  for (int d = 0; d < 3; ++d) {
-    int neg_lo = -(1 << 30), h = -(1 << 30);
-    reduce_cells("eulerfsi::solid::b_known_lo", box, KOKKOS_LAMBDA(int i, int j, int k, int& m) {
-      const int c = d == 0 ? i : d == 1 ? j : k;
-      if (known(i, j, k) != 0.0 && -c > m) m = -c;
-    }, Kokkos::Max<int>(neg_lo));
-    reduce_cells("eulerfsi::solid::b_known_hi", box, KOKKOS_LAMBDA(int i, int j, int k, int& m) {
-      const int c = d == 0 ? i : d == 1 ? j : k;
-      if (known(i, j, k) != 0.0 && c > m) m = c;
-    }, Kokkos::Max<int>(h));
-    if (h < box.lo[d]) return false;  // the reducers' identity: no known cell
-    lo[d] = -neg_lo;
-    hi[d] = h + 1;
-  }
-  out = Box{{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}};
-  return true;
-}
-
 inline void extend_tensor(const Tensor6& b, const Field3& known, const WindowField& psi, double psi_solid, int band,
                           const Box& box) {
   auto grown = [](const Box& x, int g) {

@@ -17,9 +17,13 @@ namespace {
 
 // Extrapolation sweeps: the WENO5 stencil of a cell next to the body reads 3 cells outward, and
 // the central differences of psi and B one more, so q is known 4 cells beyond the body.
-constexpr int kBand = 4;
-// psi and B are derived where their central differences read known cells (levels 1..kBand).
-constexpr double kMaxDerivedLevel = kBand;
+constexpr int kBand = 3;
+// psi and B are derived up to level 3 (Chebyshev distance 2 from the solid): a level-4 cell is at
+// least 2 cells from the surface, beyond psi's half-width (kHalfWidthCells), so psi = 0 there and
+// B, which enters only as psi G (B - I), is not needed.
+constexpr double kMaxDerivedLevel = 3.0;
+// ... which lie within (Chebyshev) kMaxDerivedLevel - 1 cells of a solid cell.
+constexpr int kPsiReach = int(kMaxDerivedLevel) - 1;
 // A cell may turn solid only if it was within 2 cells of the body (level <= 3): the body moves
 // less than one cell per step (CFL < 1), and farther cells were advected with stale neighbours.
 constexpr double kSolidReach = 3.0;
@@ -45,12 +49,6 @@ constexpr int kInitialVolumeIterations = 6;
 double exact_volume(const SolidConfig& s, const Grid& g) {
   if (s.shape == SolidShape::Sphere) return M_PI / 6.0 * s.diameter * s.diameter * s.diameter;
   return s.thickness * g.length[0] * g.length[2];
-}
-
-void copy_tensor(const kernels::Tensor6& dst, const kernels::Tensor6& src, const Box& region) {
-  for_each_cell("eulerfsi::refmap::b_prev", region, KOKKOS_LAMBDA(int i, int j, int k) {
-    for (int c = 0; c < kernels::kTensorComponents; ++c) dst.c[c](i, j, k) = src.c[c](i, j, k);
-  });
 }
 
 }  // namespace
@@ -178,22 +176,23 @@ double ReferenceMapModel::solid_margin() const {
 }
 
 void ReferenceMapModel::advance_substep(SolidBody& body, const kernels::Velocity& vel, double dt, int substep) {
-  const Box box = active_;
+  const Box box = active_, support = intersection(box, psi_box());
   if (substep == 0) {  // psi and its step-start copy move with one window: the same extents
     Kokkos::deep_copy(psi_step_start_.data, body.psi.data);
     step_inv_dt_ = 1.0 / dt;
   }
-  // dq/dt = -u - u . grad q on the known cells (WENO5, RK3)
-  kernels::reference_map_rhs(rhs_, q_, level_, vel, grid_.h, box);
-  kernels::rk3_vector_update(q_, rhs_, rhs_old_, dt, Rk3::gamma[substep], Rk3::zeta[substep], box);
+  // dq/dt = -u - u . grad q (WENO5, RK3) on the cells that are or may turn solid, all where psi > 0
+  kernels::reference_map_rhs(rhs_, q_, level_, body.psi, vel, grid_.h, support);
+  kernels::rk3_vector_update(q_, rhs_, rhs_old_, dt, Rk3::gamma[substep], Rk3::zeta[substep], support);
   std::swap(rhs_, rhs_old_);
   fill_map_ghosts(box);
   // the body where it is now, then q outside it again from the body's own values
   kernels::classify_solid(level_, q_, shape_, centres_, kSolidReach, solid_margin(), false, grid_.h, box);
   fill_level(box);
   extrapolate(box);
-  // B before the substep, ghosts included (the elastic force reads them); beyond, both are I
-  copy_tensor(body.b_prev, body.b, box.grown(kGhost, grid_.all()));
+  // B before the substep becomes B_prev by a swap (no copy; ghosts included): derive_solid writes
+  // B anew on the box, and outside it both hold I (the box holds every known cell, grown by 2)
+  std::swap(body.b, body.b_prev);
   derive_solid(body, box);
   correct_volume(body, box);
   update_active_box(body);
@@ -201,22 +200,43 @@ void ReferenceMapModel::advance_substep(SolidBody& body, const kernels::Velocity
 
 // One Newton step on V(shift) = V0 with dV/dshift = the surface area; psi derived again (B, from
 // grad q alone, does not depend on the shift).
+// Both run where psi may be non-zero (psi_box), the area's central differences one cell beyond
+// (also next to a ghost cell of the body's part on the neighbouring rank).
 void ReferenceMapModel::correct_volume(SolidBody& body, const Box& region) {
+  const Box psi_cells = psi_box(), support = intersection(region, psi_cells);
   double volume = 0.0, area = 0.0;
-  kernels::volume_and_area(body.psi, grid_.h, region, volume, area);
+  kernels::volume_and_area(body.psi, grid_.h, support, intersection(region, psi_cells.grown(1, grid_.all())), volume,
+                           area);
   volume = comm_.sum(volume);
   area = comm_.sum(area);
   if (area <= 0.0) return;
   shape_.shift += (volume0_ - volume) / area;
-  kernels::psi_from_map(body.psi, q_, level_, shape_, centres_, kHalfWidthCells, kMaxDerivedLevel, grid_.h, region);
+  kernels::psi_from_map(body.psi, q_, level_, shape_, centres_, kHalfWidthCells, kMaxDerivedLevel, grid_.h, support);
   fill(body.psi, region);
 }
 
+Box ReferenceMapModel::psi_box() const {
+  if (whole_slab_ || !solid_box_set_) return active_;
+  if (solid_box_.empty()) return Box{{active_.lo[0], active_.lo[1], active_.lo[2]}, {active_.lo[0], active_.lo[1], active_.lo[2]}};
+  return intersection(window_.local(), solid_box_.grown(kPsiReach, grid_.all()));
+}
+
 // Extrapolation sweeps 1..kBand, each from the cells known before it; the ghosts between sweeps
-// carry what the neighbouring rank (or the periodic image) extrapolated.
+// carry what the neighbouring rank (or the periodic image) extrapolated. Sweep s fills only cells
+// within s cells (Chebyshev) of a solid cell, so it runs on the solid's bounding box grown by s;
+// the box is searched in the ghosts too, where the body's part across a slab end lies: a solid
+// cell beyond them is more than kGhost >= kBand cells from every cell of the region.
 void ReferenceMapModel::extrapolate(const Box& region) {
+  static_assert(kBand <= kGhost, "the solid's bounding box is searched kGhost cells beyond the region");
+  Box solid{};
+  const Box search = intersection(region.grown(kGhost, grid_.all()), window_.local());
+  const bool any = kernels::known_bounding_box(level_, search, solid);
+  solid_box_ = any ? solid : Box{};
+  solid_box_set_ = true;
   for (int sweep = 1; sweep <= kBand; ++sweep) {
-    kernels::extrapolation_sweep(q_, level_, sweep, region);
+    const Box reach = any ? intersection(region, solid.grown(sweep, grid_.all())) : Box{};
+    if (!reach.empty()) kernels::extrapolation_sweep(q_, level_, sweep, reach);
+    // every rank exchanges, with or without a body: the halo exchange is collective
     fill_map_ghosts(region);
     fill_level(region);
   }

@@ -32,6 +32,7 @@ class ReferenceMapModel final : public SolidModel {
   void restore_scalars(const std::map<std::string, double>& s) override;
   void fill_ghosts(SolidBody& body) override;
   Box active_box() const override { return active_; }
+  Box psi_box() const override;
   double edge_half_width_cells() const override;
   WindowField psi_at_half_width(const SolidBody& body, double width_cells) override;
   StepStart psi_at_step_start() const override { return {psi_step_start_, step_inv_dt_}; }
@@ -82,6 +83,10 @@ class ReferenceMapModel final : public SolidModel {
   // included, so a body about to cross into this rank's slab is seen) grown by two cells. Every
   // kernel runs on it; outside it q is not used, psi = 0 and B = I.
   Box active_;
+  // The bounding box of the solid cells (level 1; ghosts included), set by every extrapolation:
+  // psi is derived only within two cells of them (psi_box)
+  Box solid_box_{};
+  bool solid_box_set_ = false;
   SolidWindow window_;
   double volume0_ = 0.0;
   bool whole_slab_ = false;

@@ -53,6 +53,9 @@ class SolidModel {
   // next substep's update: the shared solid kernels (mixture viscosity, elastic force,
   // diagnostics) run on it only. Empty where the body is not on this rank.
   virtual Box active_box() const = 0;
+  // Cells (storage indices, ghosts included) outside which psi = 0 now: the elastic force, which
+  // vanishes where psi does, runs on its owned part grown by one. active_box() by default.
+  virtual Box psi_box() const { return active_box(); }
   // The half-width of psi's smoothed edge in cells, and psi again at another half-width, where the
   // model derives psi from a sharp shape (the reference map): the diagnostics extrapolate the
   // shape moments to zero width; valid on active_box() (outside it the field is stale). 0 and an

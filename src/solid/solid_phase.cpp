@@ -84,10 +84,10 @@ void SolidPhase::mixture_viscosity(const Field3& mu, double mu_fluid, double bac
     kernels::mixture_viscosity_add(mu, body.psi, body.mu_s - mu_fluid, intersection(mu_region_, body.psi.window()));
 }
 
-// The force on a face reads psi one cell beyond it: the body's active box grown by one.
+// The force on a face reads psi one cell beyond it: the cells where psi may be non-zero, grown by one.
 void SolidPhase::add_elastic_force(const kernels::Velocity& rhs) const {
   for (const auto& body : bodies_) {
-    const Box faces = body.model->active_box().grown(1, grid_.interior());
+    const Box faces = body.model->psi_box().grown(1, grid_.interior());
     if (faces.empty()) continue;
     kernels::add_elastic_force(rhs, body.psi, body.b, body.b_prev, body.G, grid_.h, faces);
   }
