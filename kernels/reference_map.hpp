@@ -66,11 +66,10 @@ KOKKOS_INLINE_FUNCTION void displacement_gradient(const Vector3& q, const double
 // Signed distance to the body's surface in the current configuration, d = phi0(xi) / |grad_x phi0|,
 // with grad_x phi0 = (grad xi)^T grad_X phi0 and grad xi = I + grad q. `normal_h` (if given) gets
 // the grid spacing along the surface normal, |n . diag(h)|, which sets the width of psi's edge.
+// G: grad q at the cell (displacement_gradient).
 KOKKOS_INLINE_FUNCTION double current_distance(const Vector3& q, const ReferenceShape& shape, const double x[3],
-                                               const double inv_2h[3], int i, int j, int k,
+                                               const double inv_2h[3], int i, int j, int k, const double G[3][3],
                                                double* normal_h = nullptr) {
-  double G[3][3];
-  displacement_gradient(q, inv_2h, i, j, k, G);
   const double X[3] = {x[0] + q.c[0](i, j, k), x[1] + q.c[1](i, j, k), x[2] + q.c[2](i, j, k)};
   double n[3];
   const double phi = shape.phi(X, n);
@@ -84,6 +83,13 @@ KOKKOS_INLINE_FUNCTION double current_distance(const Vector3& q, const Reference
   }
   if (normal_h) *normal_h = g2 > 0.0 ? compat::sqrt(gh2 / g2) : 0.5 / inv_2h[0];
   return g2 > 0.0 ? phi / compat::sqrt(g2) : phi;
+}
+KOKKOS_INLINE_FUNCTION double current_distance(const Vector3& q, const ReferenceShape& shape, const double x[3],
+                                               const double inv_2h[3], int i, int j, int k,
+                                               double* normal_h = nullptr) {
+  double G[3][3];
+  displacement_gradient(q, inv_2h, i, j, k, G);
+  return current_distance(q, shape, x, inv_2h, i, j, k, G, normal_h);
 }
 
 // Smoothed Heaviside of half-width eps (Sussman, Smereka & Osher 1994): 0 below -eps, 1 above eps,
@@ -258,14 +264,16 @@ inline void extrapolation_sweep(const Vector3& q, const WindowField& level, int 
 //   psi = H_eps(-d),  eps = width x (grid spacing along the normal),  B = F F^T,  F = (I + grad q)^-1
 // psi at a cell: H_eps(-d) with eps = width x (spacing along the normal), on the known cells whose
 // central differences read known cells (1 <= level <= max_level); -1 elsewhere (psi = 0 and B = I there).
+// G gets grad q where psi is derived.
 KOKKOS_INLINE_FUNCTION double psi_of_map(const Vector3& q, const WindowField& level, const ReferenceShape& shape,
                                          const CellCentres& xc, const double inv_2h[3], double width, double max_level,
-                                         int i, int j, int k) {
+                                         int i, int j, int k, double G[3][3]) {
   const double l = level(i, j, k);
   if (l < kLevelSolid || l > max_level) return -1.0;
   const double x[3] = {xc(0, i), xc(1, j), xc(2, k)};
   double hn = 0.0;
-  const double d = current_distance(q, shape, x, inv_2h, i, j, k, &hn);
+  displacement_gradient(q, inv_2h, i, j, k, G);
+  const double d = current_distance(q, shape, x, inv_2h, i, j, k, G, &hn);
   return smoothed_heaviside(-d, width * hn);
 }
 
@@ -277,7 +285,8 @@ inline void solid_from_map(const WindowField& psi, const Tensor6& b, const Vecto
   const Tensor6 bb = b;
   for_each_cell("eulerfsi::refmap::psi_and_b", box, KOKKOS_LAMBDA(int i, int j, int k) {
     const double inv_2h[3] = {i0, i1, i2};
-    const double p = psi_of_map(m, level, shape, xc, inv_2h, width, max_level, i, j, k);
+    double G[3][3];
+    const double p = psi_of_map(m, level, shape, xc, inv_2h, width, max_level, i, j, k, G);
     if (p < 0.0) {
       psi(i, j, k) = 0.0;
       for (int c = 0; c < kTensorComponents; ++c) bb.c[c](i, j, k) = c < 3 ? 1.0 : 0.0;
@@ -285,8 +294,6 @@ inline void solid_from_map(const WindowField& psi, const Tensor6& b, const Vecto
     }
     psi(i, j, k) = p;
     // F = A^-1 with A = grad xi = I + grad q, by cofactors
-    double G[3][3];
-    displacement_gradient(m, inv_2h, i, j, k, G);
     double A[3][3];
     for (int a = 0; a < 3; ++a)
       for (int c = 0; c < 3; ++c) A[a][c] = (a == c ? 1.0 : 0.0) + G[a][c];
@@ -321,7 +328,8 @@ inline void psi_from_map(const WindowField& psi, const Vector3& q, const WindowF
   const Vector3 m = q;
   for_each_cell("eulerfsi::refmap::psi_at_width", box, KOKKOS_LAMBDA(int i, int j, int k) {
     const double inv_2h[3] = {i0, i1, i2};
-    psi(i, j, k) = compat::fmax(0.0, psi_of_map(m, level, shape, xc, inv_2h, width, max_level, i, j, k));
+    double G[3][3];
+    psi(i, j, k) = compat::fmax(0.0, psi_of_map(m, level, shape, xc, inv_2h, width, max_level, i, j, k, G));
   });
 }
 
