@@ -27,6 +27,9 @@ panel() {
 
 s=r0.2828_visc1
 panel re200_we radial re200_we0.125_$s re200_we0.5_$s re200_we4_$s --label-by We        # fig. 2
+panel re400_we radial re400_we0.125_$s re400_we0.25_$s re400_we0.5_$s re400_we1_$s re400_we2_$s re400_we4_$s \
+  --label-by We                                                                           # fig. 2 at Re = 400
+panel re100_we radial re100_we0.125_$s re100_we0.5_$s re100_we4_$s --label-by We
 panel we4_re radial re100_we4_$s re200_we4_$s re400_we4_$s --label-by Re                 # fig. 3
 panel we0.5_re radial re100_we0.5_$s re200_we0.5_$s re400_we0.5_$s --label-by Re
 panel re400_we1_starts radial re400_we1_r0.0544_visc1 re400_we1_$s re400_we1_r0.7487_visc1 \
