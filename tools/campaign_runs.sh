@@ -24,7 +24,10 @@ for stem in "$@"; do
   [ -n "${T_END:-}" ] && args+=(--set time.t_end="$T_END")
   [ -f "$dir/checkpoint.h5" ] && args+=(--restart)
   echo "[campaign_runs] $stem -> $dir ${args[*]}"
+  start=$(date +%s)
   OMP_NUM_THREADS=${OMP_NUM_THREADS:-1} nice -n "$nice_level" \
     "$bin" run "$case_file" "${args[@]}" --quiet >> "$runs/$stem.log" 2>&1 ||
     echo "[campaign_runs] $stem stopped with status $? (log: $runs/$stem.log)"
+  # the wall time of this leg, for the cases/desk headers (tools/make_paper_cases.py)
+  echo "[campaign_runs] $stem: $(( $(date +%s) - start )) s of wall time to t = $(tail -n 1 "$dir/particle.csv" | cut -d, -f2)"
 done

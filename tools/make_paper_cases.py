@@ -41,12 +41,18 @@ RESOLUTIONS = {
 # ones session 10's (each run's config.resolved.toml to summary.json times, one run to t = 60).
 _XEON = "core of a 2-core Intel Xeon VM (AVX-512) beside a second run and CI, session 10 code"
 _XEON11 = "core of a 2-core Intel Xeon VM (AVX-512) beside a second run and the test suite or CI, session 11 code"
+_XEON12 = "core of a 2-core Intel Xeon VM (AVX-512) beside the test suite, session 11 code"
+_XEON12P = ("core of a 2-core Intel Xeon VM (AVX-512) beside the test suite, session 11 code; stopped for a few\n"
+            "# minutes while benchmarks ran, so an upper bound")
 DESK_MEASURED = {  # case: (t reached, wall seconds, where)
     "re200_we4_r0.2828_visc1": (60.0, 411, _XEON11),
     "re200_we0.5_r0.2828_visc1": (60.0, 1022, _XEON11),
     "re200_we0.125_r0.2828_visc1": (60.0, 736, _XEON11),
     "re100_we4_r0.2828_visc1": (60.0, 522, _XEON11),
     "re100_we0.5_r0.2828_visc1": (60.0, 1631, _XEON11),
+    "re400_we2_r0.2828_visc1": (60.0, 405, _XEON12),
+    "re400_we0.25_r0.2828_visc1": (60.0, 822, _XEON12P),
+    "re100_we0.125_r0.2828_visc1": (60.0, 1041, _XEON12P),
 }
 
 
