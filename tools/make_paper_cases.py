@@ -44,6 +44,8 @@ _XEON11 = "core of a 2-core Intel Xeon VM (AVX-512) beside a second run and the 
 _XEON12 = "core of a 2-core Intel Xeon VM (AVX-512) beside the test suite, session 11 code"
 _XEON12P = ("core of a 2-core Intel Xeon VM (AVX-512) beside the test suite, session 11 code; stopped for a few\n"
             "# minutes while benchmarks ran, so an upper bound")
+_XEON12R = ("core of a 2-core Intel Xeon VM (AVX-512) beside a second run or CI, session 12 code; the\n"
+            "# campaign ran it on to t = 60")
 DESK_MEASURED = {  # case: (t reached, wall seconds, where)
     "re200_we4_r0.2828_visc1": (60.0, 411, _XEON11),
     "re200_we0.5_r0.2828_visc1": (60.0, 1022, _XEON11),
@@ -53,6 +55,18 @@ DESK_MEASURED = {  # case: (t reached, wall seconds, where)
     "re400_we2_r0.2828_visc1": (60.0, 405, _XEON12),
     "re400_we0.25_r0.2828_visc1": (60.0, 822, _XEON12P),
     "re100_we0.125_r0.2828_visc1": (60.0, 1041, _XEON12P),
+    # run again to t = 20 for the time (the campaign's runs to t = 60 were made in legs)
+    "re400_we4_r0.2828_visc1": (20.0, 108, _XEON12R),
+    "re400_we0.5_r0.2828_visc1": (20.0, 148, _XEON12R),
+    "re400_we1_r0.2828_visc1": (20.0, 130, _XEON12R),
+    "re400_we0.125_r0.2828_visc1": (20.0, 208, _XEON12R),
+    "appendix_re400_we0.0625_r0.2828_visc1": (20.0, 259, _XEON12R),
+    "re400_we1_r0.0544_visc1": (20.0, 203, _XEON12R),
+    "re400_we1_r0.7487_visc1": (20.0, 114, _XEON12R),
+    "re400_we1_r0.2828_visc1_rest": (20.0, 231, _XEON12R),
+    "re400_we4_r0.2828_visc0.3": (20.0, 346, _XEON12R),
+    "re400_we4_r0.2828_visc3": (20.0, 116, _XEON12R),
+    "appendix_re400_we0.03125_r0.2828_visc1": (20.0, 384, _XEON12R),
 }
 
 
