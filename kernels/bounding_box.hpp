@@ -22,18 +22,16 @@ struct CellExtentReducer {
   value_type* value;
   explicit CellExtentReducer(value_type& v) : value(&v) {}
 
-  KOKKOS_INLINE_FUNCTION void join(value_type& dst, const value_type& src) const {
+  // dst takes in src (D, S: the extent, volatile or not)
+  template <class D, class S>
+  KOKKOS_INLINE_FUNCTION static void merge(D& dst, const S& src) {
     for (int d = 0; d < 3; ++d) {
       if (src.lo[d] < dst.lo[d]) dst.lo[d] = src.lo[d];
       if (src.hi[d] > dst.hi[d]) dst.hi[d] = src.hi[d];
     }
   }
-  KOKKOS_INLINE_FUNCTION void join(volatile value_type& dst, const volatile value_type& src) const {
-    for (int d = 0; d < 3; ++d) {
-      if (src.lo[d] < dst.lo[d]) dst.lo[d] = src.lo[d];
-      if (src.hi[d] > dst.hi[d]) dst.hi[d] = src.hi[d];
-    }
-  }
+  KOKKOS_INLINE_FUNCTION void join(value_type& dst, const value_type& src) const { merge(dst, src); }
+  KOKKOS_INLINE_FUNCTION void join(volatile value_type& dst, const volatile value_type& src) const { merge(dst, src); }
   KOKKOS_INLINE_FUNCTION void init(value_type& v) const {
     for (int d = 0; d < 3; ++d) {
       v.lo[d] = 1 << 30;

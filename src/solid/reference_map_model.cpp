@@ -218,9 +218,9 @@ void ReferenceMapModel::correct_volume(SolidBody& body, const Box& region) {
   fill(body.psi, region);
 }
 
+// Empty where the rank has no solid cell (an empty box stays empty when grown).
 Box ReferenceMapModel::psi_box() const {
-  if (whole_slab_ || !solid_box_set_) return active_;
-  if (solid_box_.empty()) return Box{{active_.lo[0], active_.lo[1], active_.lo[2]}, {active_.lo[0], active_.lo[1], active_.lo[2]}};
+  if (whole_slab_) return active_;
   return intersection(window_.local(), solid_box_.grown(kPsiReach, grid_.all()));
 }
 
@@ -235,7 +235,6 @@ void ReferenceMapModel::extrapolate(const Box& region) {
   const Box search = intersection(region.grown(kGhost, grid_.all()), window_.local());
   const bool any = kernels::known_bounding_box(level_, search, solid);
   solid_box_ = any ? solid : Box{};
-  solid_box_set_ = true;
   for (int sweep = 1; sweep <= kBand; ++sweep) {
     const Box reach = any ? intersection(region, solid.grown(sweep, grid_.all())) : Box{};
     if (!reach.empty()) kernels::extrapolation_sweep(q_, level_, sweep, reach);
@@ -366,8 +365,10 @@ void ReferenceMapModel::fill_ghosts(SolidBody& body) {
   bc_->fill_scalar(body.psi.data);
   for (int c = 0; c < kernels::kTensorComponents; ++c) bc_->fill_scalar(body.b.c[c].data);
   Box known;
-  active_ = kernels::known_bounding_box(level_, all, known) ? known.grown(2, interior)
-                                                             : Box{{kGhost, kGhost, kGhost}, {kGhost, kGhost, kGhost}};
+  const bool any = kernels::known_bounding_box(level_, all, known);
+  active_ = any ? known.grown(2, interior) : Box{{kGhost, kGhost, kGhost}, {kGhost, kGhost, kGhost}};
+  // until the next extrapolation finds the solid: every known cell (a box that holds it)
+  solid_box_ = any ? known : Box{};
   if (whole_slab_) {
     window_.hold_whole_slab(window_members(body));
     active_ = interior;

@@ -83,10 +83,9 @@ class ReferenceMapModel final : public SolidModel {
   // included, so a body about to cross into this rank's slab is seen) grown by two cells. Every
   // kernel runs on it; outside it q is not used, psi = 0 and B = I.
   Box active_;
-  // The bounding box of the solid cells (level 1; ghosts included), set by every extrapolation:
-  // psi is derived only within two cells of them (psi_box)
+  // The bounding box of the solid cells (level 1; ghosts included), set by every extrapolation
+  // (after a restore, of every known cell): psi is derived only within two cells of them (psi_box)
   Box solid_box_{};
-  bool solid_box_set_ = false;
   SolidWindow window_;
   double volume0_ = 0.0;
   bool whole_slab_ = false;

@@ -255,6 +255,35 @@ TEST(SolidTransport, DISABLED_RotatingSphereErrorAtThePapersResolution) {
 // The elastic energy density of the field snapshots, psi G (tr B det(B)^(-1/3) - 3) / 2, on three
 // uniform B: simple shear F = [[1, g, 0], [0, 1, 0], [0, 0, 1]] gives tr B = 3 + g^2, det B = 1, so
 // G g^2 / 2 psi; B = I and a pure dilation B = 4 I (not isochoric) give 0. Round-off: 1e-14.
+// The one-pass bounding box (kernels/bounding_box.hpp) against the cells it was given: three
+// scattered non-zero cells, searched on the whole field and on a box that cuts one of them off;
+// no non-zero cell gives false and leaves the output alone.
+TEST(BoundingBox, KnownCellsExtents) {
+  const Mesh m(12, 10, 8, 1.0, 1.0, 1.0);
+  const Field3 f = m.field("known");
+  Kokkos::deep_copy(f, 0.0);
+  Box out{{-1, -1, -1}, {-1, -1, -1}};
+  EXPECT_FALSE(kernels::known_bounding_box(f, m.all(), out));
+  EXPECT_EQ(out.lo[0], -1);
+  const int cells[3][3] = {{4, 9, 5}, {11, 3, 7}, {6, 6, 10}};
+  auto host = Kokkos::create_mirror_view(f);
+  Kokkos::deep_copy(host, f);
+  for (const auto& c : cells) host(c[0], c[1], c[2]) = 2.0;
+  Kokkos::deep_copy(f, host);
+  ASSERT_TRUE(kernels::known_bounding_box(f, m.all(), out));
+  const int lo[3] = {4, 3, 5}, hi[3] = {12, 10, 11};
+  for (int d = 0; d < 3; ++d) {
+    EXPECT_EQ(out.lo[d], lo[d]) << "direction " << d;
+    EXPECT_EQ(out.hi[d], hi[d]) << "direction " << d;
+  }
+  // a box without the cell at i = 11: the x extent ends at the cell at i = 6
+  ASSERT_TRUE(kernels::known_bounding_box(f, Box{{0, 0, 0}, {11, m.e[1], m.e[2]}}, out));
+  EXPECT_EQ(out.lo[0], 4);
+  EXPECT_EQ(out.hi[0], 7);
+  EXPECT_EQ(out.lo[1], 6);
+  EXPECT_EQ(out.hi[2], 11);
+}
+
 TEST(SolidFields, ElasticEnergyDensity) {
   const Mesh m(4, 4, 4, 1.0, 1.0, 1.0);
   Field3 psi = m.field("psi"), out = m.field("energy");
