@@ -21,15 +21,11 @@ namespace {
 using namespace eulerfsi;
 
 using bench::pipe_case;
+using bench::pipe_case_bodies;
 
-// implicit: time.implicit_viscosity (three Helmholtz solves per substep besides the Poisson one)
-void step_benchmark(benchmark::State& state, bool implicit) {
+// The timed steps of one case; the label names it.
+void time_steps(benchmark::State& state, const CaseConfig& cfg, const std::string& label) {
   const Comm comm;
-  // particle: 0 none, 1 the paper's model, 2 the reference map
-  const bool particle = state.range(3) != 0;
-  const SolidModelKind model = state.range(3) == 2 ? SolidModelKind::ReferenceMap : SolidModelKind::Paper;
-  CaseConfig cfg = pipe_case(int(state.range(0)), int(state.range(1)), int(state.range(2)), particle, model);
-  cfg.time.implicit_viscosity = implicit;
   const Grid grid = make_grid(cfg, comm);
   FlowSolver flow(cfg, grid, comm);
   SolidPhase solids(cfg, grid, flow.boundaries(), comm);
@@ -65,9 +61,18 @@ void step_benchmark(benchmark::State& state, bool implicit) {
   state.counters["cells_per_second"] = benchmark::Counter(cells * steps / total_s);
   state.counters["threads"] = benchmark::Counter(ExecSpace().concurrency());
   state.counters["ranks"] = benchmark::Counter(comm.size());
+  state.SetLabel(label + compat::default_backend_name());
+}
+
+// implicit: time.implicit_viscosity (three Helmholtz solves per substep besides the Poisson one)
+void step_benchmark(benchmark::State& state, bool implicit) {
+  // particle: 0 none, 1 the paper's model, 2 the reference map
+  const bool particle = state.range(3) != 0;
+  const SolidModelKind model = state.range(3) == 2 ? SolidModelKind::ReferenceMap : SolidModelKind::Paper;
+  CaseConfig cfg = pipe_case(int(state.range(0)), int(state.range(1)), int(state.range(2)), particle, model);
+  cfg.time.implicit_viscosity = implicit;
   static const char* labels[3] = {"pipe ", "pipe+sphere(paper) ", "pipe+sphere(refmap) "};
-  state.SetLabel(std::string(labels[state.range(3)]) + (implicit ? "implicit-viscosity " : "") +
-                 compat::default_backend_name());
+  time_steps(state, cfg, std::string(labels[state.range(3)]) + (implicit ? "implicit-viscosity " : ""));
 }
 
 void BM_Step(benchmark::State& state) { step_benchmark(state, false); }
@@ -94,6 +99,24 @@ BENCHMARK(BM_StepImplicitViscosity)
     ->Args({64, 64, 64, 0})
     ->Args({128, 64, 64, 0})
     ->Args({128, 64, 64, 2})
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+
+// Several reference-map bodies (issue 8: their cost follows their number and size, not the grid):
+// `bodies` spheres of diameter d_percent / 100 D spread along the pipe (pipe_case_bodies).
+void BM_StepBodies(benchmark::State& state) {
+  const int bodies = int(state.range(3));
+  const double d = 0.01 * double(state.range(4));
+  const CaseConfig cfg = pipe_case_bodies(int(state.range(0)), int(state.range(1)), int(state.range(2)), bodies, d);
+  time_steps(state, cfg, "pipe+" + std::to_string(bodies) + "x sphere(refmap, d=" + std::to_string(state.range(4)) + "%) ");
+}
+BENCHMARK(BM_StepBodies)
+    ->ArgNames({"nx", "ny", "nz", "bodies", "d_percent"})
+    ->Args({128, 64, 64, 1, 20})
+    ->Args({128, 64, 64, 2, 20})
+    ->Args({128, 64, 64, 4, 20})
+    ->Args({128, 64, 64, 1, 10})
+    ->Args({128, 64, 64, 4, 10})
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 

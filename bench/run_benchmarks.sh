@@ -28,7 +28,7 @@ for t in $threads; do
     # the FFTW_MEASURE plans take minutes to make; the estimated ones are what the solver uses
     [ "$b" = poisson ] && extra=(--benchmark_filter='measure:0|BM_PoissonFftDct')
     # the GPU sizes (BM_StepLarge) take seconds per step here
-    [ "$b" = step ] && extra=(--benchmark_filter='BM_Step/|BM_StepImplicitViscosity/')
+    [ "$b" = step ] && extra=(--benchmark_filter='BM_Step/|BM_StepImplicitViscosity/|BM_StepBodies/')
     echo "== bench_$b, OMP_NUM_THREADS=$t" >&2
     OMP_NUM_THREADS=$t "$exe" "${flags[@]}" "${extra[@]}" --benchmark_out="$out/${b}_t$t.json" >&2
   done

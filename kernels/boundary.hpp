@@ -76,6 +76,20 @@ inline void fill_ghosts(const Field3& f, int dir, int n, GhostRule rule, double 
   }
 }
 
+// The wall-normal component's face on the high wall (storage index kGhost + n - 1 along dir, the
+// last owned face) set to zero on every x-plane: what GhostRule::Normal writes on the owned side.
+inline void zero_high_wall_face(const Field3& f, int dir, int n) {
+  const int e0 = static_cast<int>(f.extent(0)), eb = static_cast<int>(f.extent(dir == 1 ? 2 : 1));
+  const int face = kGhost + n - 1;
+  Kokkos::parallel_for("eulerfsi::boundary::wall_face", Policy2({0, 0}, {e0, eb}), KOKKOS_LAMBDA(int a, int b) {
+    if (dir == 1) {
+      f(a, face, b) = 0.0;
+    } else {
+      f(a, b, face) = 0.0;
+    }
+  });
+}
+
 // The same on a field stored on a window: its numbering along `dir` starts at storage index
 // `origin`, and only the sides it holds (low, high) are filled; x-planes [x_lo, x_hi) of its own.
 inline void fill_window_ghosts(const Field3& f, int dir, int n, GhostRule rule, int origin, bool low, bool high,

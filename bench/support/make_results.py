@@ -12,11 +12,11 @@ import re
 
 BEGIN, END = "<!-- results:begin -->", "<!-- results:end -->"
 
-# how often each kernel runs in one RK3 step (3 substeps); fill_velocity: after the predictor,
-# after the projection and after the flow-rate correction in every substep
+# how often each kernel runs in one RK3 step (3 substeps); fill_velocity: after the flow-rate
+# correction in every substep (after the predictor only the divergence's stencil is filled)
 CALLS_PER_STEP = {
-    "MomentumRhs": 3, "Rk3Update": 3, "Divergence": 3, "SubtractGradient": 3, "FillGhosts": 9,
-    "FillVelocity": 9, "ScalarAdvectionRhs": 3, "TensorTransportRhs": 3, "AddElasticForce": 3,
+    "MomentumRhs": 3, "Rk3Update": 3, "Divergence": 3, "SubtractGradient": 3, "FillGhosts": 3,
+    "FillVelocity": 3, "ScalarAdvectionRhs": 3, "TensorTransportRhs": 3, "AddElasticForce": 3,
     "PoissonSolve": 3,
 }
 NAMES = {
@@ -77,6 +77,8 @@ def main():
             if kind == "step":
                 sphere = {"0": "", "1": " + sphere (paper model)", "2": " + sphere (reference map)"}[a.get("particle", "0")]
                 implicit = " (implicit viscosity)" if fn == "StepImplicitViscosity" else ""
+                if fn == "StepBodies":
+                    sphere = f" + {a['bodies']} x sphere d = {int(a['d_percent']) / 100:g} D (reference map)"
                 label = f"**whole RK3 step {grid}{sphere}{implicit}**"
                 rows.append((1, grid, name, threads, ranks, label, r["ns_per_cell_step"], 1, r["ns_per_cell_step"], None))
             else:

@@ -26,4 +26,22 @@ inline CaseConfig pipe_case(int nx, int ny, int nz, bool particle, SolidModelKin
   return cfg;
 }
 
+// The same pipe with `count` reference-map bodies of diameter d (in D), spread evenly along x
+// (each at r/R = 0.2828, turned by 90 degrees from the one before, so their boxes never meet).
+inline CaseConfig pipe_case_bodies(int nx, int ny, int nz, int count, double d) {
+  CaseConfig cfg = pipe_case(nx, ny, nz, false);
+  const double quarter[4][2] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
+  for (int b = 0; b < count; ++b) {
+    SolidConfig s;
+    s.shape = SolidShape::Sphere;
+    s.diameter = d;
+    const double r = 0.2828 * 0.5;
+    s.center = {(b + 0.5) * cfg.domain.length[0] / count, r * quarter[b % 4][0], r * quarter[b % 4][1]};
+    s.We = 1.0;
+    s.model = SolidModelKind::ReferenceMap;
+    cfg.solids.push_back(s);
+  }
+  return cfg;
+}
+
 }  // namespace eulerfsi::bench

@@ -43,6 +43,17 @@ void BoundaryConditions::fill_velocity(const kernels::Velocity& vel, double t) c
   }
 }
 
+void BoundaryConditions::fill_divergence_stencil(const kernels::Velocity& vel) const {
+  exchange_x(vel.c[0], grid_, comm_);
+  for (int dir = 1; dir <= 2; ++dir) {
+    if (grid_.bc[dir] == Boundary::Periodic) {
+      kernels::fill_ghosts(vel.c[dir], dir, grid_.n[dir], GhostRule::Periodic, 0.0, 0.0);
+    } else {
+      kernels::zero_high_wall_face(vel.c[dir], dir, grid_.n[dir]);
+    }
+  }
+}
+
 void BoundaryConditions::fill_scalar(const Field3& f) const {
   exchange_x(f, grid_, comm_);
   for (int dir = 1; dir <= 2; ++dir) {

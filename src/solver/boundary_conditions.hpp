@@ -24,6 +24,11 @@ class BoundaryConditions {
   // in the grid's frame (c != dir: the wall-normal component is zero).
   double wall_velocity(int c, int dir, bool high, double t) const;
   void fill_velocity(const kernels::Velocity& vel, double t) const;
+  // Only what div_h u reads beyond the owned cells, for a velocity whose ghosts were filled before
+  // its owned cells changed: the low x-halo of u, the periodic ghosts of the normal component
+  // along a periodic y or z, and the owned face on a high wall set to zero again (the low wall's
+  // face is a ghost, still zero). The other ghosts stay stale until the next fill_velocity.
+  void fill_divergence_stencil(const kernels::Velocity& vel) const;
   // The grid's x-velocity in the laboratory: every wall moves with -frame_u relative to it.
   void set_frame_velocity(double frame_u) { frame_u_ = frame_u; }
   // Cell-centred scalar with zero normal gradient at walls (pressure, psi, B components).

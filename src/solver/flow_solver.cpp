@@ -161,8 +161,8 @@ void FlowSolver::set_initial_condition() {
 void FlowSolver::make_solenoidal() {
   bc_.fill_velocity(state_.vel, 0.0);
   // a sampled profile, the penalized wall or a particle at rest need not be divergence free
-  project(1.0);
-  if (impose_flow_rate_) correct_flow_rate();
+  const double open_sum = project(1.0);
+  if (impose_flow_rate_) correct_flow_rate(open_sum);
   bc_.fill_velocity(state_.vel, 0.0);
   Kokkos::deep_copy(state_.p, 0.0);
   dpdx_ = 0.0;
@@ -211,12 +211,17 @@ void FlowSolver::advance(double t, double dt, SolidCoupling* solids) {
     } else {
       predict(dt, s);
     }
-    bc_.fill_velocity(vel, t_next);
+    // the implicit predictor wrote the ghosts too (a whole-field copy): they need a full fill
+    if (helmholtz_) {
+      bc_.fill_velocity(vel, t_next);
+    } else {
+      bc_.fill_divergence_stencil(vel);
+    }
     // (iv) projection
-    project(alpha_dt);
+    const double open_sum = project(alpha_dt);
     kernels::accumulate_step_pressure(state_.p_step, state_.p, Rk3::alpha(s), s == 0, grid_.all());
     // (v) constant flow rate: the uniform correction is the mean pressure gradient times alpha dt
-    if (impose_flow_rate_) dpdx_step -= correct_flow_rate() / dt;
+    if (impose_flow_rate_) dpdx_step -= correct_flow_rate(open_sum) / dt;
     bc_.fill_velocity(vel, t_next);
   }
   if (impose_flow_rate_) dpdx_ = dpdx_step;
@@ -293,18 +298,21 @@ void FlowSolver::set_frame_velocity(double u_frame, double t) {
 }
 
 // Leaves the ghosts of the velocity stale: the caller refills them once it is done with it.
-void FlowSolver::project(double alpha_dt) {
+// Returns this rank's sum of the projected u over the open x-faces (for lab_bulk_velocity).
+double FlowSolver::project(double alpha_dt) {
   const Box box = grid_.interior();
   auto& vel = state_.vel;
   poisson_->solve_divergence(state_.p, vel.c[0], vel.c[1], vel.c[2], grid_.h, 1.0 / alpha_dt, box);
   bc_.fill_scalar(state_.p);
-  kernels::subtract_gradient(vel.c[0], vel.c[1], vel.c[2], state_.p, grid_.h, alpha_dt, box);
+  return kernels::subtract_gradient_open_sum(vel.c[0], vel.c[1], vel.c[2], state_.p, grid_.h, alpha_dt,
+                                             masks_.outside_u, box);
 }
 
 // Adds du to u on the open faces (w du on the forced layer) so the bulk velocity is U_b again
 // (U_b - frame_u in the grid's frame); returns du, the mean pressure gradient times alpha dt.
-double FlowSolver::correct_flow_rate() {
-  const double bulk = bulk_velocity();
+// open_sum: this rank's open-face sum of u as it is now (from project).
+double FlowSolver::correct_flow_rate(double open_sum) {
+  const double bulk = lab_bulk_velocity(open_sum) - frame_u_;
   // du moves the flow rate by du times the open faces' (weighted) area
   const double du = (cfg_.flow.bulk_velocity - frame_u_ - bulk) * (flow_faces_ / open_faces_);
   kernels::add_open_x_velocity(state_.vel.c[0], masks_.open_u, du, grid_.interior());
@@ -317,7 +325,11 @@ double FlowSolver::correct_flow_rate() {
 double FlowSolver::bulk_velocity() const { return lab_bulk_velocity() - frame_u_; }
 
 double FlowSolver::lab_bulk_velocity() const {
-  const double sum = comm_.sum(kernels::open_face_sum(state_.vel.c[0], masks_.outside_u, grid_.interior()));
+  return lab_bulk_velocity(kernels::open_face_sum(state_.vel.c[0], masks_.outside_u, grid_.interior()));
+}
+
+double FlowSolver::lab_bulk_velocity(double open_sum) const {
+  const double sum = comm_.sum(open_sum);
   if (flow_faces_ == inside_faces_) return sum / inside_faces_ + frame_u_;
   return (sum + frame_u_ * inside_faces_) / flow_faces_;
 }

@@ -66,10 +66,12 @@ class FlowSolver {
 
  private:
   void build_wall_masks();
-  void project(double alpha_dt);
+  double project(double alpha_dt);
   void predict(double dt, int substep);
   void predict_implicit_viscosity(double t_next, double dt, int substep);
-  double correct_flow_rate();
+  double correct_flow_rate(double open_sum);
+  // lab_bulk_velocity from this rank's open-face sum of u
+  double lab_bulk_velocity(double open_sum) const;
 
   CaseConfig cfg_;
   Grid grid_;
