@@ -28,7 +28,10 @@ for t in $threads; do
     # the FFTW_MEASURE plans take minutes to make; the estimated ones are what the solver uses
     [ "$b" = poisson ] && extra=(--benchmark_filter='measure:0|BM_PoissonFftDct')
     # the GPU sizes (BM_StepLarge) take seconds per step here
-    [ "$b" = step ] && extra=(--benchmark_filter='BM_Step/|BM_StepImplicitViscosity/|BM_StepBodies/')
+    # (and each repetition runs STEP_MIN_TIME seconds: a few steps would sample this VM's drift)
+    pair_bodies=; [ "$t" = 1 ] && pair_bodies='|BM_StepPairBodies/'
+    [ "$b" = step ] && extra=(--benchmark_filter="BM_Step/|BM_StepImplicitViscosity/|BM_StepPair/$pair_bodies"
+                              --benchmark_min_time="${STEP_MIN_TIME:-2}")
     echo "== bench_$b, OMP_NUM_THREADS=$t" >&2
     OMP_NUM_THREADS=$t "$exe" "${flags[@]}" "${extra[@]}" --benchmark_out="$out/${b}_t$t.json" >&2
   done
@@ -37,7 +40,8 @@ done
 if command -v mpiexec > /dev/null && [ "${RANKS:-2}" -gt 1 ]; then
   echo "== bench_step, ${RANKS:-2} ranks x 1 thread" >&2
   OMP_NUM_THREADS=1 mpiexec -n "${RANKS:-2}" "$build/bench/bench_step" "${flags[@]}" \
-    --benchmark_filter='BM_Step/' --benchmark_out="$out/step_t1_r${RANKS:-2}.json" >&2
+    --benchmark_filter='BM_Step/|BM_StepPair/' --benchmark_min_time="${STEP_MIN_TIME:-2}" \
+    --benchmark_out="$out/step_t1_r${RANKS:-2}.json" >&2
 fi
 load_after=$(cut -d' ' -f1-3 /proc/loadavg)
 

@@ -45,6 +45,8 @@ def main():
         series = {}
         for b in medians(step):
             a = dict(re.findall(r"(\w+):(\d+)", b["run_name"]))
+            if "particle" not in a:
+                continue  # BM_StepBodies: one grid only, in the table
             cells = int(a["nx"]) * int(a["ny"]) * int(a["nz"])
             series.setdefault(a["particle"], []).append((cells, b["ns_per_cell_step"]))
         for kind, pts in sorted(series.items()):

@@ -33,7 +33,7 @@ const std::vector<Section>& schema() {
                 "frame_velocity"}},
       {"time", {"cfl", "dt", "t_end", "max_steps", "implicit_viscosity"}},
       {"output", {"dir", "every", "fields_every", "profiles_every", "checkpoint_every", "shape_times"}},
-      {"solid", {"shape", "diameter", "center", "thickness", "We", "viscosity_ratio", "initial_velocity", "sharpening", "model", "map_margin"}},
+      {"solid", {"shape", "diameter", "center", "thickness", "We", "viscosity_ratio", "initial_velocity", "sharpening", "model", "map_margin", "b_extension"}},
   };
   return s;
 }
@@ -598,6 +598,11 @@ void read_solids(const Reader& r, const toml::table& root, const DomainConfig& d
     if (c.model != SolidModelKind::ReferenceMap && c.map_margin > 0)
       r.fail(s + ".map_margin", s + ".map_margin = " + fmt_double(c.map_margin) + ": applies to " + s +
                                     ".model = \"reference-map\" only (set it to 0 or remove it)");
+    r.get(t, s, "b_extension", c.b_extension);
+    // the reference map derives B from xi everywhere it is known: there is no transported B to extend
+    if (c.model == SolidModelKind::ReferenceMap && !c.b_extension)
+      r.fail(s + ".b_extension", s + ".b_extension = false: applies to " + s +
+                                     ".model = \"paper\" only; the reference map derives B from xi (remove it)");
 
     if (c.shape == SolidShape::Layer) {
       if (d.geometry != Geometry::Channel && d.geometry != Geometry::Couette)
@@ -770,7 +775,8 @@ std::string to_toml(const CaseConfig& c) {
        << "initial_velocity = " << toml_str(to_string(s.initial_velocity)) << "\n"
        << "sharpening = " << fmt_double(s.sharpening) << "\n"
        << "model = " << toml_str(to_string(s.model)) << "\n"
-       << "map_margin = " << fmt_double(s.map_margin) << "\n";
+       << "map_margin = " << fmt_double(s.map_margin) << "\n"
+       << "b_extension = " << (s.b_extension ? "true" : "false") << "\n";
   }
   return os.str();
 }

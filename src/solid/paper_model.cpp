@@ -99,7 +99,8 @@ void PaperModel::advance_substep(SolidBody& body, const kernels::Velocity& vel, 
   std::swap(b_rhs_, b_rhs_old_);
   clip_conserving(body.psi.data);
   bc_->fill_scalar(body.psi.data);
-  extend_tensor(body);
+  // solid.b_extension = false: B transported with the mixture everywhere, as in the paper
+  if (body.cfg.b_extension) extend_tensor(body);
   if (substep == 2 && body.cfg.sharpening > 0.0) sharpen(body);
   for (int c = 0; c < kernels::kTensorComponents; ++c) bc_->fill_scalar(body.b.c[c].data);
 }

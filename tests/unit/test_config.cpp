@@ -68,6 +68,7 @@ void expect_same(const CaseConfig& a, const CaseConfig& b) {
     EXPECT_EQ(a.solids[i].initial_velocity, b.solids[i].initial_velocity);
     EXPECT_EQ(a.solids[i].model, b.solids[i].model);
     EXPECT_EQ(a.solids[i].map_margin, b.solids[i].map_margin);
+    EXPECT_EQ(a.solids[i].b_extension, b.solids[i].b_extension);
   }
 }
 
@@ -114,6 +115,7 @@ center = [1.0, 0.1, -0.05]
 We = 2.5
 viscosity_ratio = 0.0
 initial_velocity = "rest"
+b_extension = false
 
 [[solid]]
 center = [3.0, -0.1, 0.1]
@@ -193,6 +195,8 @@ TEST(Config, EverySectionIsRead) {
   EXPECT_EQ(c.solids[1].initial_velocity, InitialSolidVelocity::Fluid);
   EXPECT_EQ(c.solids[1].map_margin, 0.5);
   EXPECT_EQ(c.solids[0].map_margin, SolidConfig{}.map_margin);
+  EXPECT_FALSE(c.solids[0].b_extension);
+  EXPECT_TRUE(c.solids[1].b_extension);
 }
 
 TEST(Config, CouetteWithLayer) {
@@ -438,6 +442,9 @@ TEST(ConfigErrors, Layers) {
 TEST(ConfigErrors, MapMarginBelongsToTheReferenceMap) {
   expect_error("[[solid]]\nmap_margin = 0.5\n", {"solid[0].map_margin = 0.5", "\"reference-map\" only"});
   expect_error("[[solid]]\nmodel = \"reference-map\"\nmap_margin = 1.5\n", {"solid[0].map_margin = 1.5", "[0, 1]"});
+  expect_error("[[solid]]\nmodel = \"reference-map\"\nb_extension = false\n",
+               {"solid[0].b_extension = false", "\"paper\" only"});
+  expect_error("[[solid]]\nb_extension = 1\n", {"solid[0].b_extension"});
   expect_error("[[solid]]\nmodel = \"reference-map\"\nmap_margin = -0.1\n", {"solid[0].map_margin = -0.1", "[0, 1]"});
 }
 
