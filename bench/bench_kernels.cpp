@@ -132,7 +132,7 @@ void BM_SubtractGradient(benchmark::State& state) {
   kernels::divergence(phi, u[0], u[1], u[2], c.grid.h, 1.0, c.grid.interior());
   c.flow.boundaries().fill_scalar(phi);
   time_kernel(state, c.grid, cell_bytes(c.grid, 7),
-              [&] { kernels::subtract_gradient(u[0], u[1], u[2], phi, c.grid.h, 1e-6, c.grid.interior()); });
+              [&] { kernels::subtract_gradient(u[0], u[1], u[2], phi, c.grid.h, 1e-6, kernels::Mask2(), c.grid.interior()); });
 }
 
 // fill_ghosts of u, v, w in y and z with the pipe's wall rules (the kernel calls of

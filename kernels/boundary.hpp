@@ -4,11 +4,13 @@
 //   Even:      f(-1-m) = f(m)                   (cell-centred scalar, zero normal gradient)
 //   Tangent:   f(-1-m) = 2 f_wall_lo - f(m)     (velocity parallel to the wall: no-slip at the wall)
 //   Normal:    f(-1) = 0, f(-1-m) = -f(-1+m)    (velocity through the wall, stored on the wall face)
+//   WallFace:  f(n-1) = 0 only                  (Normal's owned high face: what div_h u reads once the
+//                                                 owned cells changed; the ghosts keep the last fill)
 #include "core/types.hpp"
 
 namespace eulerfsi::kernels {
 
-enum class GhostRule { Periodic, Even, Tangent, Normal };
+enum class GhostRule { Periodic, Even, Tangent, Normal, WallFace };
 
 // The ghost layers of one line of f along DIR (the other two indices fixed), storage index s.
 // A field on a window (src/solid/solid_window.hpp) numbers its cells from `origin` along DIR and
@@ -58,6 +60,9 @@ struct GhostLine {
           for (int m = 1; m <= G; ++m) at(a, b, hi + m) = -at(a, b, hi - m);
         }
         break;
+      case GhostRule::WallFace:
+        if (high) at(a, b, hi) = 0.0;
+        break;
     }
   }
 };
@@ -74,20 +79,6 @@ inline void fill_ghosts(const Field3& f, int dir, int n, GhostRule rule, double 
   } else {
     Kokkos::parallel_for("eulerfsi::boundary::ghosts_z", plane, GhostLine<2>{f, n, rule, wall_lo, wall_hi});
   }
-}
-
-// The wall-normal component's face on the high wall (storage index kGhost + n - 1 along dir, the
-// last owned face) set to zero on every x-plane: what GhostRule::Normal writes on the owned side.
-inline void zero_high_wall_face(const Field3& f, int dir, int n) {
-  const int e0 = static_cast<int>(f.extent(0)), eb = static_cast<int>(f.extent(dir == 1 ? 2 : 1));
-  const int face = kGhost + n - 1;
-  Kokkos::parallel_for("eulerfsi::boundary::wall_face", Policy2({0, 0}, {e0, eb}), KOKKOS_LAMBDA(int a, int b) {
-    if (dir == 1) {
-      f(a, face, b) = 0.0;
-    } else {
-      f(a, b, face) = 0.0;
-    }
-  });
 }
 
 // The same on a field stored on a window: its numbering along `dir` starts at storage index

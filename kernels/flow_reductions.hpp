@@ -35,12 +35,17 @@ inline double max_signal_rate(const Field3& u, const Field3& v, const Field3& w,
   return result;
 }
 
+// An x-face's share of the flow rate: 1 - chi_u (1 without a mask).
+KOKKOS_INLINE_FUNCTION double open_weight(const Mask2& chi_u, bool has_mask, int j, int k) {
+  return has_mask ? 1.0 - chi_u(j, k) : 1.0;
+}
+
 // Sum of u over x-faces open to the flow (chi = 0): the flow rate Q times Nx / (dy dz).
 inline double open_face_sum(const Field3& u, const Mask2& chi_u, const Box& box) {
   const bool has_mask = chi_u.extent(0) > 0;
   double s = 0.0;
   reduce_cells("eulerfsi::diag::flow_rate", box, KOKKOS_LAMBDA(int i, int j, int k, double& su) {
-    su += (has_mask ? 1.0 - chi_u(j, k) : 1.0) * u(i, j, k);
+    su += open_weight(chi_u, has_mask, j, k) * u(i, j, k);
   }, Kokkos::Sum<double>(s));
   return s;
 }

@@ -3,7 +3,7 @@
 //   L_h phi = div_h u* / (alpha dt),   u = u* - alpha dt grad_h phi
 #include "core/launch.hpp"
 #include "core/types.hpp"
-#include "kernels/time_update.hpp"
+#include "kernels/flow_reductions.hpp"
 
 namespace eulerfsi::kernels {
 
@@ -25,22 +25,11 @@ inline void divergence(const Field3& out, const Field3& u, const Field3& v, cons
   divergence_shifted(out, 0, u, v, w, h, scale, box);
 }
 
-// u_D(i) -= factor (phi(i + e_D) - phi(i)) / h_D for the three components in one sweep.
-inline void subtract_gradient(const Field3& u, const Field3& v, const Field3& w, const Field3& phi, const double h[3],
-                              double factor, const Box& box) {
-  const double ix = factor / h[0], iy = factor / h[1], iz = factor / h[2];
-  for_each_cell("eulerfsi::projection::correct", box, KOKKOS_LAMBDA(int i, int j, int k) {
-    const double p0 = phi(i, j, k);
-    u(i, j, k) -= (phi(i + 1, j, k) - p0) * ix;
-    v(i, j, k) -= (phi(i, j + 1, k) - p0) * iy;
-    w(i, j, k) -= (phi(i, j, k + 1) - p0) * iz;
-  });
-}
-
-// The same, returning the sum over the x-faces open to the flow (chi_u = 0) of the corrected u
-// (kernels::open_face_sum's sum, in the same order): the flow rate without a second read of u.
-inline double subtract_gradient_open_sum(const Field3& u, const Field3& v, const Field3& w, const Field3& phi,
-                                         const double h[3], double factor, const Mask2& chi_u, const Box& box) {
+// u_D(i) -= factor (phi(i + e_D) - phi(i)) / h_D for the three components in one sweep. Returns
+// the sum over the x-faces open to the flow (chi_u = 0; every face without a mask) of the
+// corrected u, kernels::open_face_sum's sum in the same order: the flow rate without a second read.
+inline double subtract_gradient(const Field3& u, const Field3& v, const Field3& w, const Field3& phi, const double h[3],
+                                double factor, const Mask2& chi_u, const Box& box) {
   const double ix = factor / h[0], iy = factor / h[1], iz = factor / h[2];
   const bool has_mask = chi_u.extent(0) > 0;
   double s = 0.0;
@@ -50,7 +39,7 @@ inline double subtract_gradient_open_sum(const Field3& u, const Field3& v, const
     u(i, j, k) = un;
     v(i, j, k) -= (phi(i, j + 1, k) - p0) * iy;
     w(i, j, k) -= (phi(i, j, k + 1) - p0) * iz;
-    su += (has_mask ? 1.0 - chi_u(j, k) : 1.0) * un;
+    su += open_weight(chi_u, has_mask, j, k) * un;
   }, Kokkos::Sum<double>(s));
   return s;
 }

@@ -49,7 +49,7 @@ void BoundaryConditions::fill_divergence_stencil(const kernels::Velocity& vel) c
     if (grid_.bc[dir] == Boundary::Periodic) {
       kernels::fill_ghosts(vel.c[dir], dir, grid_.n[dir], GhostRule::Periodic, 0.0, 0.0);
     } else {
-      kernels::zero_high_wall_face(vel.c[dir], dir, grid_.n[dir]);
+      kernels::fill_ghosts(vel.c[dir], dir, grid_.n[dir], GhostRule::WallFace, 0.0, 0.0);
     }
   }
 }

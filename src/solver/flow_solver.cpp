@@ -304,8 +304,7 @@ double FlowSolver::project(double alpha_dt) {
   auto& vel = state_.vel;
   poisson_->solve_divergence(state_.p, vel.c[0], vel.c[1], vel.c[2], grid_.h, 1.0 / alpha_dt, box);
   bc_.fill_scalar(state_.p);
-  return kernels::subtract_gradient_open_sum(vel.c[0], vel.c[1], vel.c[2], state_.p, grid_.h, alpha_dt,
-                                             masks_.outside_u, box);
+  return kernels::subtract_gradient(vel.c[0], vel.c[1], vel.c[2], state_.p, grid_.h, alpha_dt, masks_.outside_u, box);
 }
 
 // Adds du to u on the open faces (w du on the forced layer) so the bulk velocity is U_b again
