@@ -15,10 +15,13 @@
 #include "core/launch.hpp"
 #include "core/types.hpp"
 #include "kernels/momentum_fluxes.hpp"
+#include "kernels/predictor_terms.hpp"
 
 namespace eulerfsi::kernels {
 
-template <bool Uniform>
+// Predict: the RK3 predictor of kernels/momentum_predictor.hpp in the same pass (rhs, then u*
+// over rhs_old); Force: rhs holds the elastic force on entry, added to the momentum terms.
+template <bool Uniform, bool Predict = false, bool Force = false>
 struct MomentumSweep {
   double* rhs[3];
   const double* u[3];
@@ -26,6 +29,7 @@ struct MomentumSweep {
   double mu_uniform;
   double ih[3];
   long st[3];  // strides of the shared layout (st[2] = 1)
+  PredictorTerms predictor{};  // read only when Predict
 
   // U_DX(c) on local copies of the pointers: the loops below then see no stores that could change them.
   template <int D, int X>
@@ -47,13 +51,18 @@ struct MomentumSweep {
   // previous row, both replaced by this row's. The z-faces are computed twice, in one loop: a
   // separate pass that kept them cost more than it saved where the loop runs 8 wide (AVX-512).
   template <int D>
-  void row_of(long base, int k0, int k1, double* KOKKOS_RESTRICT plane, double* KOKKOS_RESTRICT row) const {
+  void row_of(long base, int j, int k0, int k1, double* KOKKOS_RESTRICT plane, double* KOKKOS_RESTRICT row) const {
     const double* KOKKOS_RESTRICT uD = u[D] + base;
     const double* KOKKOS_RESTRICT ux = u[0] + base;
     const double* KOKKOS_RESTRICT uy = u[1] + base;
     const double* KOKKOS_RESTRICT uz = u[2] + base;
     const double* KOKKOS_RESTRICT m = Uniform ? nullptr : mu + base;
     double* KOKKOS_RESTRICT out = rhs[D] + base;
+    // Predict: u* is written over rhs_old at the cell just read (no other cell reads either); the
+    // terms copied to a local, which the stores cannot change (so the loop keeps them in registers)
+    const PredictorTerms t = predictor;
+    double* KOKKOS_RESTRICT star = Predict ? t.rhs_old_to_star[D] + base : nullptr;
+    const double* KOKKOS_RESTRICT chi = Predict ? t.chi_row(D, j) : nullptr;
     const double mu0 = mu_uniform, i0 = ih[0], i1 = ih[1], i2 = ih[2], iD = ih[D];
     const long s0 = st[0], s1 = st[1], s2 = st[2], sD = st[D];
     EULERFSI_INDEPENDENT_LOOP
@@ -66,7 +75,14 @@ struct MomentumSweep {
       plane[k] = fx;
       row[k] = fy;
       // summed in MomentumRhs::value's order: normal, then E1, then E2
-      out[k] = -(D == 0 ? tx + ty + tz : (D == 1 ? ty + tz + tx : tz + tx + ty));
+      const double r = -(D == 0 ? tx + ty + tz : (D == 1 ? ty + tz + tx : tz + tx + ty));
+      if constexpr (Predict) {
+        const double full = Force ? r + out[k] : r;
+        out[k] = full;
+        star[k] = t.star<D>(uD[k], full, star[k], chi[k]);
+      } else {
+        out[k] = r;
+      }
     }
   }
 
@@ -100,17 +116,17 @@ struct MomentumSweep {
       for (int j = j0; j < j1; ++j) {
         const long base = i * st[0] + j * st[1];
         const size_t p = size_t(j - j0) * nk;
-        row_of<0>(base, k0, k1, planes[0] + p - k0, rows[0] - k0);
-        row_of<1>(base, k0, k1, planes[1] + p - k0, rows[1] - k0);
-        row_of<2>(base, k0, k1, planes[2] + p - k0, rows[2] - k0);
+        row_of<0>(base, j, k0, k1, planes[0] + p - k0, rows[0] - k0);
+        row_of<1>(base, j, k0, k1, planes[1] + p - k0, rows[1] - k0);
+        row_of<2>(base, j, k0, k1, planes[2] + p - k0, rows[2] - k0);
       }
     }
   }
 };
 
 // rhs over the box on host backends: the x-extent split into one slab per thread.
-template <bool Uniform>
-void momentum_sweep(const MomentumSweep<Uniform>& f, const Box& b, const char* label) {
+template <bool Uniform, bool Predict, bool Force>
+void momentum_sweep(const MomentumSweep<Uniform, Predict, Force>& f, const Box& b, const char* label) {
   if (b.empty()) return;
   const int ni = b.hi[0] - b.lo[0];
   const int slabs = std::max(1, std::min(ni, int(ExecSpace().concurrency())));

@@ -79,4 +79,26 @@ inline Box intersection(const Box& a, const Box& b) {
   return c;
 }
 
+// The cells of a outside b as at most 6 disjoint boxes (slabs below and above b along x, then
+// along y within b's x-range, then along z within its x-y range); returns how many were written.
+inline int difference(const Box& a, const Box& b, Box out[6]) {
+  const Box cut = intersection(a, b);
+  if (cut.empty()) {
+    out[0] = a;
+    return a.empty() ? 0 : 1;
+  }
+  int n = 0;
+  Box rest = a;
+  for (int d = 0; d < 3; ++d) {
+    Box below = rest, above = rest;
+    below.hi[d] = cut.lo[d];
+    above.lo[d] = cut.hi[d];
+    if (!below.empty()) out[n++] = below;
+    if (!above.empty()) out[n++] = above;
+    rest.lo[d] = cut.lo[d];
+    rest.hi[d] = cut.hi[d];
+  }
+  return n;
+}
+
 }  // namespace eulerfsi

@@ -93,6 +93,12 @@ void SolidPhase::add_elastic_force(const kernels::Velocity& rhs) const {
   }
 }
 
+Box SolidPhase::elastic_force_region() const {
+  Box region{{0, 0, 0}, {0, 0, 0}};
+  for (const auto& body : bodies_) region = bounding_box(region, body.model->psi_box().grown(1, grid_.interior()));
+  return region;
+}
+
 double SolidPhase::max_wave_speed() const {
   double c = 0.0;
   for (const auto& body : bodies_) c = std::max(c, std::sqrt(body.G));

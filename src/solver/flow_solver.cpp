@@ -6,7 +6,9 @@
 #include <vector>
 
 #include "kernels/flow_reductions.hpp"
+#include "kernels/elastic_force.hpp"
 #include "kernels/momentum.hpp"
+#include "kernels/momentum_predictor.hpp"
 #include "kernels/projection.hpp"
 #include "kernels/time_update.hpp"
 #include "solver/initial_conditions.hpp"
@@ -17,7 +19,7 @@ FlowSolver::FlowSolver(const CaseConfig& cfg, const Grid& grid, const Comm& comm
     : cfg_(cfg), grid_(grid), comm_(comm), bc_(cfg, grid, comm.comm), state_(grid),
       rhs_new_{{grid.make_field("rhs_u"), grid.make_field("rhs_v"), grid.make_field("rhs_w")}},
       rhs_old_{{grid.make_field("rhs_u_old"), grid.make_field("rhs_v_old"), grid.make_field("rhs_w_old")}},
-      mu_(grid.make_field("mu")), poisson_(make_poisson_solver(grid, comm.comm)), mu_fluid_(1.0 / cfg.flow.Re) {
+      mu_(grid.make_field("mu")), no_wall_("no_wall", 1, grid.n[2] + 2 * kGhost), poisson_(make_poisson_solver(grid, comm.comm)), mu_fluid_(1.0 / cfg.flow.Re) {
   const Geometry geo = cfg.domain.geometry;
   impose_flow_rate_ = geo == Geometry::Pipe || geo == Geometry::Duct || geo == Geometry::Channel;
   mu_explicit_ = mu_fluid_;
@@ -201,20 +203,17 @@ void FlowSolver::advance(double t, double dt, SolidCoupling* solids) {
     }
     // (ii) explicit momentum right-hand side: advection + viscous (+ elastic stress); the
     // mixture viscosity only where it differs from mu_f (a face's stencil reads mu one cell away)
-    const Box mixture = solids ? solids->viscosity_region().grown(1, box) : Box{{0, 0, 0}, {0, 0, 0}};
-    if (mixture.size() < box.size()) kernels::momentum_rhs(rhs_new_, vel, mu_explicit_, grid_.h, box);
-    if (!mixture.empty()) kernels::momentum_rhs(rhs_new_, vel, mu_, grid_.h, mixture);
-    if (solids) solids->add_elastic_force(rhs_new_);
     // (iii) predictor with implicit penalization of the pipe wall
+    const Box mixture = solids ? solids->viscosity_region().grown(1, box) : Box{{0, 0, 0}, {0, 0, 0}};
     if (helmholtz_) {
+      if (mixture.size() < box.size()) kernels::momentum_rhs(rhs_new_, vel, mu_explicit_, grid_.h, box);
+      if (!mixture.empty()) kernels::momentum_rhs(rhs_new_, vel, mu_, grid_.h, mixture);
+      if (solids) solids->add_elastic_force(rhs_new_);
       predict_implicit_viscosity(t_next, dt, s);
-    } else {
-      predict(dt, s);
-    }
-    // the implicit predictor wrote the ghosts too (a whole-field copy): they need a full fill
-    if (helmholtz_) {
+      // the implicit predictor wrote the ghosts too (a whole-field copy): they need a full fill
       bc_.fill_velocity(vel, t_next);
     } else {
+      predict(dt, s, solids, mixture);  // (ii) and (iii) in one pass
       bc_.fill_divergence_stencil(vel);
     }
     // (iv) projection
@@ -234,23 +233,52 @@ const char* const kWallLabels[3] = {"eulerfsi::penalization::wall_u", "eulerfsi:
                                     "eulerfsi::penalization::wall_w"};
 }  // namespace
 
-// u* = u + dt (gamma rhs + zeta rhs_old), the pipe wall penalized implicitly (kernels/time_update.hpp).
-void FlowSolver::predict(double dt, int s) {
+// u* = u + dt (gamma rhs + zeta rhs_old), the pipe wall penalized implicitly, with rhs computed in
+// the same pass (kernels/momentum_predictor.hpp). The solid region (where mu is the mixture's,
+// else the faces the elastic force reaches) is a pass of its own that adds the force, which is
+// written into rhs first; the rest of the box takes the constant-viscosity pass.
+void FlowSolver::predict(double dt, int s, const SolidCoupling* solids, const Box& mixture) {
   const Box box = grid_.interior();
   auto& vel = state_.vel;
-  const double penal = Rk3::alpha(s) * dt / cfg_.flow.penalization_eta;
   const bool interpolated = cfg_.flow.pipe_wall == PipeWall::Interpolated && masks_.chi[0].extent(0) > 0;
+  kernels::PredictorTerms terms;
+  terms.a = dt * Rk3::gamma[s];
+  terms.b = dt * Rk3::zeta[s];
+  terms.penal = Rk3::alpha(s) * dt / cfg_.flow.penalization_eta;
   for (int c = 0; c < 3; ++c) {
-    // the wall is at rest in the laboratory: u_wall = -frame_u in the grid's frame
-    const double u_wall = c == 0 ? -frame_u_ : 0.0;
-    kernels::rk3_update(vel.c[c], rhs_new_.c[c], rhs_old_.c[c], interpolated ? masks_.chi_wall[c] : masks_.chi[c], dt,
-                        Rk3::gamma[s], Rk3::zeta[s], penal, box, kUpdateLabels[c], u_wall);
-    std::swap(rhs_new_.c[c], rhs_old_.c[c]);
+    const kernels::Mask2& chi = interpolated ? masks_.chi_wall[c] : masks_.chi[c];
+    terms.rhs_old_to_star[c] = rhs_old_.c[c].data();
+    terms.chi[c] = chi.extent(0) > 0 ? chi.data() : no_wall_.data();
+    terms.chi_stride[c] = chi.extent(0) > 0 ? long(chi.stride(0)) : 0;
+  }
+  terms.u_wall[0] = -frame_u_;  // the wall is at rest in the laboratory: u_wall = -frame_u in the grid's frame
+  Box forced{{0, 0, 0}, {0, 0, 0}};
+  if (solids) forced = intersection(bounding_box(mixture, solids->elastic_force_region()), box);
+  if (!forced.empty()) {
+    for (int c = 0; c < 3; ++c) kernels::fill_box(rhs_new_.c[c], 0.0, forced);
+    solids->add_elastic_force(rhs_new_);
+  }
+  Box parts[6];
+  const int n = difference(box, forced, parts);
+  for (int p = 0; p < n; ++p) kernels::momentum_predict(rhs_new_, vel, mu_explicit_, grid_.h, terms, false, parts[p]);
+  if (!forced.empty()) {
+    if (mixture.empty()) {
+      kernels::momentum_predict(rhs_new_, vel, mu_explicit_, grid_.h, terms, true, forced);
+    } else {
+      kernels::momentum_predict(rhs_new_, vel, mu_, grid_.h, terms, forced);
+    }
+  }
+  // u* is in rhs_old, rhs^k in rhs_new: u* becomes the velocity, rhs^k the next rhs^(k-1), u^k the scratch
+  for (int c = 0; c < 3; ++c) {
+    Field3 u_start = vel.c[c];
+    vel.c[c] = rhs_old_.c[c];
+    rhs_old_.c[c] = rhs_new_.c[c];
+    rhs_new_.c[c] = u_start;
   }
   // the interpolated wall reads the predicted velocity of its inner neighbours: a second pass
   if (interpolated)
     for (int c = 0; c < 3; ++c)
-      kernels::penalize_wall_layer(vel.c[c], masks_.layer[c], masks_.weight[c], masks_.neighbour[c], penal, box,
+      kernels::penalize_wall_layer(vel.c[c], masks_.layer[c], masks_.weight[c], masks_.neighbour[c], terms.penal, box,
                                    kWallLabels[c], c == 0 ? -frame_u_ : 0.0);
 }
 

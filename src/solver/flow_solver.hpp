@@ -67,7 +67,7 @@ class FlowSolver {
  private:
   void build_wall_masks();
   double project(double alpha_dt);
-  void predict(double dt, int substep);
+  void predict(double dt, int substep, const SolidCoupling* solids, const Box& mixture);
   void predict_implicit_viscosity(double t_next, double dt, int substep);
   double correct_flow_rate(double open_sum);
   // lab_bulk_velocity from this rank's open-face sum of u
@@ -81,6 +81,7 @@ class FlowSolver {
   kernels::Velocity rhs_new_, rhs_old_;
   Field3 mu_;
   WallMasks masks_;
+  kernels::Mask2 no_wall_;  // one row of zeros: the mask of a component without a wall (stride 0)
   std::unique_ptr<PoissonSolver> poisson_;
   double mu_fluid_;
   // time.implicit_viscosity: mu_f by Crank-Nicolson (the solver and its right-hand side), the

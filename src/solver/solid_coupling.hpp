@@ -20,6 +20,8 @@ class SolidCoupling {
   virtual Box viscosity_region() const = 0;
   // rhs_D += d/dx_E [ psi G ((B^k + B^(k-1))/2 - I)_DE ] for every body.
   virtual void add_elastic_force(const kernels::Velocity& rhs) const = 0;
+  // A box holding every face add_elastic_force() writes (storage indices; empty: none).
+  virtual Box elastic_force_region() const = 0;
   // Fastest elastic shear-wave speed sqrt(G) among the bodies (enters the CFL condition).
   virtual double max_wave_speed() const = 0;
 };
