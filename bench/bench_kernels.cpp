@@ -159,6 +159,21 @@ void BM_SubtractGradient(benchmark::State& state) {
               [&] { kernels::subtract_gradient(u[0], u[1], u[2], phi, c.grid.h, 1e-6, kernels::Mask2(), c.grid.interior()); });
 }
 
+// subtract_gradient as the solver calls it, gathering the step pressure p_step += alpha phi (a
+// middle substep: read p_step too): read phi, u, v, w, p_step; write u, v, w, p_step = 9 doubles.
+// It replaced a separate pass that read p and p_step and wrote p_step on every cell.
+void BM_SubtractGradientStepPressure(benchmark::State& state) {
+  PipeCase c(state, false);
+  const Field3 phi = c.grid.make_field("phi"), p_step = c.grid.make_field("p_step");
+  const auto& u = c.flow.state().vel.c;
+  kernels::divergence(phi, u[0], u[1], u[2], c.grid.h, 1.0, c.grid.interior());
+  c.flow.boundaries().fill_scalar(phi);
+  time_kernel(state, c.grid, cell_bytes(c.grid, 9), [&] {
+    kernels::subtract_gradient(u[0], u[1], u[2], phi, c.grid.h, 1e-6, kernels::Mask2(), c.grid.interior(),
+                               {p_step, 0.2, false});
+  });
+}
+
 // fill_ghosts of u, v, w in y and z with the pipe's wall rules (the kernel calls of
 // BoundaryConditions::fill_velocity without the x halo exchange). Minimal: every ghost value
 // written once from one owned value read: 2 doubles per ghost value, kGhost layers on each
@@ -232,6 +247,7 @@ EULERFSI_KERNEL_BENCH(BM_Rk3Update);
 EULERFSI_KERNEL_BENCH(BM_MomentumPredict);
 EULERFSI_KERNEL_BENCH(BM_Divergence);
 EULERFSI_KERNEL_BENCH(BM_SubtractGradient);
+EULERFSI_KERNEL_BENCH(BM_SubtractGradientStepPressure);
 EULERFSI_KERNEL_BENCH(BM_FillGhosts);
 EULERFSI_KERNEL_BENCH(BM_FillVelocity);
 EULERFSI_KERNEL_BENCH(BM_ScalarAdvectionRhs);

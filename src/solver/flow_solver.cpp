@@ -217,13 +217,13 @@ void FlowSolver::advance(double t, double dt, SolidCoupling* solids) {
       bc_.fill_divergence_stencil(vel);
     }
     // (iv) projection
-    const double open_sum = project(alpha_dt);
-    kernels::accumulate_step_pressure(state_.p_step, state_.p, Rk3::alpha(s), s == 0, grid_.all());
+    const double open_sum = project(alpha_dt, {state_.p_step, Rk3::alpha(s), s == 0});
     // (v) constant flow rate: the uniform correction is the mean pressure gradient times alpha dt
     if (impose_flow_rate_) dpdx_step -= correct_flow_rate(open_sum) / dt;
     bc_.fill_velocity(vel, t_next);
   }
   if (impose_flow_rate_) dpdx_ = dpdx_step;
+  bc_.fill_scalar(state_.p_step);  // the projections summed it on the interior
   frame_x_ += frame_u_ * dt;
 }
 
@@ -327,12 +327,13 @@ void FlowSolver::set_frame_velocity(double u_frame, double t) {
 
 // Leaves the ghosts of the velocity stale: the caller refills them once it is done with it.
 // Returns this rank's sum of the projected u over the open x-faces (for lab_bulk_velocity).
-double FlowSolver::project(double alpha_dt) {
+// step: the step pressure that gathers alpha_s p_s in the same pass (none: not gathered).
+double FlowSolver::project(double alpha_dt, const kernels::StepPressure& step) {
   const Box box = grid_.interior();
   auto& vel = state_.vel;
   poisson_->solve_divergence(state_.p, vel.c[0], vel.c[1], vel.c[2], grid_.h, 1.0 / alpha_dt, box);
   bc_.fill_scalar(state_.p);
-  return kernels::subtract_gradient(vel.c[0], vel.c[1], vel.c[2], state_.p, grid_.h, alpha_dt, masks_.outside_u, box);
+  return kernels::subtract_gradient(vel.c[0], vel.c[1], vel.c[2], state_.p, grid_.h, alpha_dt, masks_.outside_u, box, step);
 }
 
 // Adds du to u on the open faces (w du on the forced layer) so the bulk velocity is U_b again

@@ -6,6 +6,7 @@
 #include "config/case_config.hpp"
 #include "grid/grid.hpp"
 #include "parallel/comm.hpp"
+#include "kernels/projection.hpp"
 #include "poisson/helmholtz_solver.hpp"
 #include "poisson/poisson_solver.hpp"
 #include "solver/boundary_conditions.hpp"
@@ -66,7 +67,7 @@ class FlowSolver {
 
  private:
   void build_wall_masks();
-  double project(double alpha_dt);
+  double project(double alpha_dt, const kernels::StepPressure& step = {});
   void predict(double dt, int substep, const SolidCoupling* solids, const Box& mixture);
   void predict_implicit_viscosity(double t_next, double dt, int substep);
   double correct_flow_rate(double open_sum);
