@@ -24,20 +24,19 @@ struct MomentumPredictCell {
   PredictorTerms terms;
 
   template <int D>
-  KOKKOS_FORCEINLINE_FUNCTION void component(long c, int j) const {
+  KOKKOS_FORCEINLINE_FUNCTION void component(long c, int j, int k) const {
     constexpr int E1 = (D + 1) % 3, E2 = (D + 2) % 3;
     const double r = MomentumRhs<D, Uniform>::value(u[D], u[E1], u[E2], mu, mu_uniform, c, st[D], st[E1], st[E2],
                                                     ih[D], ih[E1], ih[E2]);
     const double full = Force ? r + rhs[D][c] : r;
     rhs[D][c] = full;
-    const long k = c % st[1];
     terms.rhs_old_to_star[D][c] = terms.star<D>(u[D][c], full, terms.rhs_old_to_star[D][c], terms.chi_row(D, j)[k]);
   }
   KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k) const {
     const long c = i * st[0] + j * st[1] + k;
-    component<0>(c, j);
-    component<1>(c, j);
-    component<2>(c, j);
+    component<0>(c, j, k);
+    component<1>(c, j, k);
+    component<2>(c, j, k);
   }
 };
 

@@ -54,7 +54,8 @@ inline double subtract_gradient_impl(const Field3& u, const Field3& v, const Fie
     u(i, j, k) = un;
     v(i, j, k) -= (phi(i, j + 1, k) - p0) * iy;
     w(i, j, k) -= (phi(i, j, k + 1) - p0) * iz;
-    if constexpr (Accumulate) p_step(i, j, k) = (first ? 0.0 : p_step(i, j, k)) + alpha * p0;
+    // a plain if: nvcc cannot first-capture a variable inside if constexpr in a device lambda
+    if (Accumulate) p_step(i, j, k) = (first ? 0.0 : p_step(i, j, k)) + alpha * p0;
     su += open_weight(chi_u, has_mask, j, k) * un;
   }, Kokkos::Sum<double>(s));
   return s;

@@ -11,6 +11,7 @@
 
 #include "kernels/momentum_predictor.hpp"
 #include "kernels/time_update.hpp"
+#include "support/device_test.hpp"
 #include "support/field_compare.hpp"
 
 using namespace eulerfsi;
@@ -68,7 +69,7 @@ double max_relative_difference(const kernels::Velocity& a, const kernels::Veloci
 
 // The same expressions in the same order as momentum_rhs + rk3_update: equal to the last bit where
 // the compiler contracts alike, to a few units in the last place where it forms FMAs differently.
-TEST(MomentumPredictor, EqualsTheRightHandSideThenTheUpdate) {
+DEVICE_TEST(MomentumPredictor, EqualsTheRightHandSideThenTheUpdate) {
   std::mt19937 gen(5);
   const double h[3] = {0.1, 0.125, 0.08}, dt = 0.01, gamma = 5.0 / 12.0, zeta = -17.0 / 60.0, penal = 40.0;
   const double mu0 = 0.05;
@@ -124,6 +125,50 @@ TEST(MomentumPredictor, EqualsTheRightHandSideThenTheUpdate) {
       Box outside_cell{{kExt[0] - 1, 0, 0}, {kExt[0], 1, 1}};
       EXPECT_EQ(max_relative_difference(star, rhs_old, outside_cell), 0.0) << what;
     }
+}
+
+// The per-cell form the GPUs run (MomentumPredictCell), called cell by cell on the host, against
+// the host sweep: the same expressions, so the same numbers to a few units in the last place.
+TEST(MomentumPredictor, PerCellFormEqualsTheSweep) {
+  // on a device the per-cell form is what momentum_predict runs, and its memory is not the host's
+  if (!kHostKernels) GTEST_SKIP() << "the sweep is the host path";
+  std::mt19937 gen(8);
+  const double h[3] = {0.1, 0.125, 0.08};
+  const kernels::Velocity u = random_velocity("u", gen), force = random_velocity("f", gen);
+  const Field3 mu = random_field("mu", gen, 0.01, 0.1);
+  const kernels::Mask2 chi[3] = {random_mask(gen), random_mask(gen), random_mask(gen)};
+  const Box box{{kGhost, kGhost, kGhost}, {kExt[0] - kGhost, kExt[1] - kGhost, kExt[2] - kGhost}};
+  const kernels::Velocity rhs_old = random_velocity("r", gen);
+  const kernels::Velocity star_sweep = copy_of(rhs_old), star_cell = copy_of(rhs_old);
+  const kernels::Velocity rhs_sweep = copy_of(force), rhs_cell = copy_of(force);
+  auto terms_for = [&](const kernels::Velocity& star) {
+    kernels::PredictorTerms t;
+    t.a = 0.004;
+    t.b = -0.002;
+    t.penal = 25.0;
+    t.u_wall[0] = 0.7;
+    for (int c = 0; c < 3; ++c) {
+      t.rhs_old_to_star[c] = star.c[c].data();
+      t.chi[c] = chi[c].data();
+      t.chi_stride[c] = long(chi[c].stride(0));
+    }
+    return t;
+  };
+  kernels::momentum_predict(rhs_sweep, u, mu, h, terms_for(star_sweep), box);
+  const long st[3] = {long(u.c[0].stride(0)), long(u.c[0].stride(1)), 1};
+  const kernels::MomentumPredictCell<false, true> f{{rhs_cell.c[0].data(), rhs_cell.c[1].data(), rhs_cell.c[2].data()},
+                                                    {u.c[0].data(), u.c[1].data(), u.c[2].data()},
+                                                    mu.data(),
+                                                    0.0,
+                                                    {1.0 / h[0], 1.0 / h[1], 1.0 / h[2]},
+                                                    {st[0], st[1], st[2]},
+                                                    terms_for(star_cell)};
+  Kokkos::fence();
+  for (int i = box.lo[0]; i < box.hi[0]; ++i)
+    for (int j = box.lo[1]; j < box.hi[1]; ++j)
+      for (int k = box.lo[2]; k < box.hi[2]; ++k) f(i, j, k);
+  EXPECT_LE(max_relative_difference(rhs_cell, rhs_sweep, box), 1e-14);
+  EXPECT_LE(max_relative_difference(star_cell, star_sweep, box), 1e-14);
 }
 
 // a \ b as disjoint boxes: every cell of a is in exactly one part or in b.
