@@ -1,6 +1,5 @@
 #pragma once
-// The pointwise part of the RK3 predictor with implicit volume penalization (Kadoch et al. 2012;
-// the same update as kernels/time_update.hpp's rk3_update):
+// The pointwise part of the RK3 predictor with implicit volume penalization (Kadoch et al. 2012):
 //   u* = [u^k + dt (gamma rhs^k + zeta rhs^(k-1)) + pen u_wall] / (1 + pen),   pen = alpha dt chi / eta
 // for the momentum kernels that compute rhs^k and u* in one pass (kernels/momentum_predictor.hpp).
 #include "core/types.hpp"

@@ -15,12 +15,14 @@ BEGIN, END = "<!-- results:begin -->", "<!-- results:end -->"
 # how often each kernel runs in one RK3 step (3 substeps); fill_velocity: after the flow-rate
 # correction in every substep (after the predictor only the divergence's stencil is filled)
 CALLS_PER_STEP = {
-    "MomentumRhs": 3, "Rk3Update": 3, "Divergence": 3, "SubtractGradient": 3, "FillGhosts": 3,
+    "MomentumRhs": 3, "MomentumPredict": 3, "Divergence": 3, "SubtractGradient": 3,
+    "SubtractGradientStepPressure": 3, "FillGhosts": 3,
     "FillVelocity": 3, "ScalarAdvectionRhs": 3, "TensorTransportRhs": 3, "AddElasticForce": 3,
     "PoissonSolve": 3,
 }
 NAMES = {
-    "MomentumRhs": "momentum_rhs (3 comp.)", "Rk3Update": "rk3_update (3 comp.)", "Divergence": "divergence",
+    "MomentumRhs": "momentum_rhs (3 comp.)", "MomentumPredict": "momentum_predict (rhs + RK3 update)",
+    "Divergence": "divergence", "SubtractGradientStepPressure": "subtract_gradient + step pressure",
     "SubtractGradient": "subtract_gradient", "FillGhosts": "fill_ghosts y,z (u,v,w)",
     "FillVelocity": "fill_velocity (x halo + y,z ghosts)", "ScalarAdvectionRhs": "scalar_advection_rhs (psi)",
     "TensorTransportRhs": "tensor_transport_rhs (B)", "AddElasticForce": "add_elastic_force",

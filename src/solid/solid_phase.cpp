@@ -85,9 +85,11 @@ void SolidPhase::mixture_viscosity(const Field3& mu, double mu_fluid, double bac
 }
 
 // The force on a face reads psi one cell beyond it: the cells where psi may be non-zero, grown by one.
+Box SolidPhase::elastic_faces(const SolidBody& body) const { return body.model->psi_box().grown(1, grid_.interior()); }
+
 void SolidPhase::add_elastic_force(const kernels::Velocity& rhs) const {
   for (const auto& body : bodies_) {
-    const Box faces = body.model->psi_box().grown(1, grid_.interior());
+    const Box faces = elastic_faces(body);
     if (faces.empty()) continue;
     kernels::add_elastic_force(rhs, body.psi, body.b, body.b_prev, body.G, grid_.h, faces);
   }
@@ -95,7 +97,7 @@ void SolidPhase::add_elastic_force(const kernels::Velocity& rhs) const {
 
 Box SolidPhase::elastic_force_region() const {
   Box region{{0, 0, 0}, {0, 0, 0}};
-  for (const auto& body : bodies_) region = bounding_box(region, body.model->psi_box().grown(1, grid_.interior()));
+  for (const auto& body : bodies_) region = bounding_box(region, elastic_faces(body));
   return region;
 }
 

@@ -55,6 +55,8 @@ class SolidPhase final : public SolidCoupling {
   void restore(const std::vector<std::pair<std::string, double>>& scalars);
 
  private:
+  // The faces add_elastic_force() writes for one body.
+  Box elastic_faces(const SolidBody& body) const;
   CaseConfig cfg_;
   Grid grid_;
   Comm comm_;

@@ -11,6 +11,7 @@
 
 #include "kernels/momentum.hpp"
 #include "support/field_compare.hpp"
+#include "support/random_fields.hpp"
 
 using namespace eulerfsi;
 
@@ -19,14 +20,7 @@ namespace {
 constexpr int kExt[3] = {11, 10, 13};  // storage extents, ghosts included
 
 Field3 random_field(const std::string& name, std::mt19937& gen, double lo, double hi) {
-  Field3 f(name, kExt[0], kExt[1], kExt[2]);
-  auto h = Kokkos::create_mirror_view(f);
-  std::uniform_real_distribution<double> dist(lo, hi);
-  for (int i = 0; i < kExt[0]; ++i)
-    for (int j = 0; j < kExt[1]; ++j)
-      for (int k = 0; k < kExt[2]; ++k) h(i, j, k) = dist(gen);
-  Kokkos::deep_copy(f, h);
-  return f;
+  return test::random_field(name, gen, kExt, lo, hi);
 }
 
 // The per-cell form on the host, cell by cell (what for_each_row hands a GPU).

@@ -10,6 +10,7 @@
 #include "kernels/projection.hpp"
 #include "solver/rk3.hpp"
 #include "support/field_compare.hpp"
+#include "support/random_fields.hpp"
 
 using namespace eulerfsi;
 
@@ -17,22 +18,7 @@ namespace {
 
 constexpr int kExt[3] = {10, 9, 11};
 
-Field3 random_field(const std::string& name, std::mt19937& gen) {
-  Field3 f(name, kExt[0], kExt[1], kExt[2]);
-  auto h = Kokkos::create_mirror_view(f);
-  std::uniform_real_distribution<double> dist(-1.0, 1.0);
-  for (int i = 0; i < kExt[0]; ++i)
-    for (int j = 0; j < kExt[1]; ++j)
-      for (int k = 0; k < kExt[2]; ++k) h(i, j, k) = dist(gen);
-  Kokkos::deep_copy(f, h);
-  return f;
-}
-
-Field3 copy_of(const Field3& f) {
-  Field3 c("copy", kExt[0], kExt[1], kExt[2]);
-  Kokkos::deep_copy(c, f);
-  return c;
-}
+Field3 random_field(const std::string& name, std::mt19937& gen) { return test::random_field(name, gen, kExt, -1.0, 1.0); }
 
 }  // namespace
 
@@ -41,8 +27,8 @@ TEST(StepPressure, IsTheAlphaWeightedSumOfTheSubstepPressures) {
   const double h[3] = {0.1, 0.2, 0.15};
   const Box box{{kGhost, kGhost, kGhost}, {kExt[0] - kGhost, kExt[1] - kGhost, kExt[2] - kGhost}};
   Field3 u = random_field("u", gen), v = random_field("v", gen), w = random_field("w", gen);
-  Field3 u_ref = copy_of(u), v_ref = copy_of(v), w_ref = copy_of(w);
-  const Field3 p_step = random_field("p_step", gen), stale = copy_of(p_step);  // stale: what it held before
+  Field3 u_ref = test::copy_of(u), v_ref = test::copy_of(v), w_ref = test::copy_of(w);
+  const Field3 p_step = random_field("p_step", gen), stale = test::copy_of(p_step);  // stale: what it held before
   Field3 phi[Rk3::stages];
   for (auto& p : phi) p = random_field("phi", gen);
   for (int s = 0; s < Rk3::stages; ++s) {
