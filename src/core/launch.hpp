@@ -64,4 +64,37 @@ void reduce_cells(const char* label, const Box& b, const F& f, const Reducer& re
   }
 }
 
+// The sum over the box of a body with a row method, acc += f.row_sum(i, j, k0, k1) on host
+// backends (which runs the row's k loop itself, so it vectorises); GPUs call f(i, j, k, acc).
+template <class F>
+double sum_rows(const char* label, const Box& b, const F& f) {
+  double result = 0.0;
+  if constexpr (kHostKernels) {
+    const int k0 = b.lo[2], k1 = b.hi[2];
+    Kokkos::parallel_reduce(label, plane_policy(b), KOKKOS_LAMBDA(int i, int j, double& acc) {
+      acc += f.row_sum(i, j, k0, k1);
+    }, Kokkos::Sum<double>(result));
+  } else {
+    Kokkos::parallel_reduce(label, b.policy(), f, Kokkos::Sum<double>(result));
+  }
+  return result;
+}
+
+// The same for a maximum: acc = max(acc, f.row_max(i, j, k0, k1)) on hosts, f(i, j, k, acc) on
+// GPUs (f keeps acc the larger of the two). A maximum does not depend on the order: exact.
+template <class F>
+double max_rows(const char* label, const Box& b, const F& f) {
+  double result = 0.0;
+  if constexpr (kHostKernels) {
+    const int k0 = b.lo[2], k1 = b.hi[2];
+    Kokkos::parallel_reduce(label, plane_policy(b), KOKKOS_LAMBDA(int i, int j, double& acc) {
+      const double m = f.row_max(i, j, k0, k1);
+      acc = m > acc ? m : acc;
+    }, Kokkos::Max<double>(result));
+  } else {
+    Kokkos::parallel_reduce(label, b.policy(), f, Kokkos::Max<double>(result));
+  }
+  return result;
+}
+
 }  // namespace eulerfsi

@@ -23,15 +23,17 @@ FftwMpiPoisson::FftwMpiPoisson(const Grid& grid, MPI_Comm comm, Planning plannin
 
 // The divergence goes straight into the transform's contiguous unknowns (FFTW's own buffer on
 // hosts): the gather pass of solve() is skipped, the arithmetic is the same.
-void FftwMpiPoisson::solve_divergence(Field3 phi, const Field3& u, const Field3& v, const Field3& w, const double h[3],
-                                      double scale, const Box& interior) {
+double FftwMpiPoisson::solve_divergence(Field3 phi, const Field3& u, const Field3& v, const Field3& w,
+                                        const double h[3], double scale, const Box& interior,
+                                        const kernels::OpenFaceSum& flow) {
   // the block holds exactly the interior, shifted by kGhost: any other box would write past it
   const auto& block = transform_.unknown_block();
   for (int d = 0; d < 3; ++d)
     if (interior.lo[d] != kGhost || interior.hi[d] - interior.lo[d] != int(block.extent(d)))
       throw std::logic_error("FftwMpiPoisson::solve_divergence: the box is not this rank's interior");
-  kernels::divergence_shifted(transform_.unknown_block(), kGhost, u, v, w, h, scale, interior);
+  const double open_sum = kernels::divergence_shifted(transform_.unknown_block(), kGhost, u, v, w, h, scale, interior, flow);
   transform_.solve_gathered(phi, 0.0, 1.0);
+  return open_sum;
 }
 
 }  // namespace eulerfsi

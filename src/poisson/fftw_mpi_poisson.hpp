@@ -16,8 +16,8 @@ class FftwMpiPoisson final : public PoissonSolver {
   FftwMpiPoisson(const Grid& grid, MPI_Comm comm, Planning planning = Planning::Estimate);
 
   void solve(Field3 rhs_phi) override { transform_.solve(rhs_phi, 0.0, 1.0); }
-  void solve_divergence(Field3 phi, const Field3& u, const Field3& v, const Field3& w, const double h[3],
-                        double scale, const Box& interior) override;
+  double solve_divergence(Field3 phi, const Field3& u, const Field3& v, const Field3& w, const double h[3],
+                          double scale, const Box& interior, const kernels::OpenFaceSum& flow = {}) override;
   const char* name() const override { return "fftw-mpi"; }
 
  private:

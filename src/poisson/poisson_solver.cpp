@@ -10,10 +10,11 @@ namespace eulerfsi {
 
 PoissonSolver::~PoissonSolver() = default;
 
-void PoissonSolver::solve_divergence(Field3 phi, const Field3& u, const Field3& v, const Field3& w, const double h[3],
-                                     double scale, const Box& interior) {
-  kernels::divergence(phi, u, v, w, h, scale, interior);
+double PoissonSolver::solve_divergence(Field3 phi, const Field3& u, const Field3& v, const Field3& w, const double h[3],
+                                       double scale, const Box& interior, const kernels::OpenFaceSum& flow) {
+  const double open_sum = kernels::divergence(phi, u, v, w, h, scale, interior, flow);
   solve(phi);
+  return open_sum;
 }
 
 namespace {

@@ -8,6 +8,7 @@
 
 #include "core/types.hpp"
 #include "grid/grid.hpp"
+#include "kernels/projection.hpp"
 
 namespace eulerfsi {
 
@@ -25,9 +26,10 @@ class PoissonSolver {
   virtual void solve(Field3 rhs_phi) = 0;
   // The projection's solve: f = scale div(u, v, w) (kernels/projection.hpp) on the interior box,
   // then phi into the interior of `phi`, as divergence + solve(phi) do. A solver with its own
-  // buffer writes f straight into it (one pass over the grid less).
-  virtual void solve_divergence(Field3 phi, const Field3& u, const Field3& v, const Field3& w, const double h[3],
-                                double scale, const Box& interior);
+  // buffer writes f straight into it (one pass over the grid less). Returns this rank's open-face
+  // sum of u, taken in the divergence's pass when flow is active (0 otherwise).
+  virtual double solve_divergence(Field3 phi, const Field3& u, const Field3& v, const Field3& w, const double h[3],
+                                  double scale, const Box& interior, const kernels::OpenFaceSum& flow = {});
   virtual const char* name() const = 0;
 };
 

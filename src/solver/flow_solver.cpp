@@ -163,8 +163,7 @@ void FlowSolver::set_initial_condition() {
 void FlowSolver::make_solenoidal() {
   bc_.fill_velocity(state_.vel, 0.0);
   // a sampled profile, the penalized wall or a particle at rest need not be divergence free
-  const double open_sum = project(1.0);
-  if (impose_flow_rate_) correct_flow_rate(open_sum);
+  project(1.0);  // with a constant flow rate, its correction too
   bc_.fill_velocity(state_.vel, 0.0);
   Kokkos::deep_copy(state_.p, 0.0);
   dpdx_ = 0.0;
@@ -216,10 +215,10 @@ void FlowSolver::advance(double t, double dt, SolidCoupling* solids) {
       predict(dt, s, solids, mixture);  // (ii) and (iii) in one pass
       bc_.fill_divergence_stencil(vel);
     }
-    // (iv) projection
-    const double open_sum = project(alpha_dt, {state_.p_step, Rk3::alpha(s), s == 0});
-    // (v) constant flow rate: the uniform correction is the mean pressure gradient times alpha dt
-    if (impose_flow_rate_) dpdx_step -= correct_flow_rate(open_sum) / dt;
+    // (iv) projection, (v) with a constant flow rate its uniform correction: the mean pressure
+    // gradient times alpha dt
+    const double du = project(alpha_dt, {state_.p_step, Rk3::alpha(s), s == 0});
+    if (impose_flow_rate_) dpdx_step -= du / dt;
     bc_.fill_velocity(vel, t_next);
   }
   if (impose_flow_rate_) dpdx_ = dpdx_step;
@@ -326,25 +325,26 @@ void FlowSolver::set_frame_velocity(double u_frame, double t) {
 }
 
 // Leaves the ghosts of the velocity stale: the caller refills them once it is done with it.
-// Returns this rank's sum of the projected u over the open x-faces (for lab_bulk_velocity).
 // step: the step pressure that gathers alpha_s p_s in the same pass (none: not gathered).
+// The flow rate is taken from u* in the divergence's pass: the correction leaves it unchanged to
+// round-off (kernels::subtract_gradient), so du is known before the correction and added in its pass.
 double FlowSolver::project(double alpha_dt, const kernels::StepPressure& step) {
   const Box box = grid_.interior();
   auto& vel = state_.vel;
-  poisson_->solve_divergence(state_.p, vel.c[0], vel.c[1], vel.c[2], grid_.h, 1.0 / alpha_dt, box);
+  const double open_sum = poisson_->solve_divergence(state_.p, vel.c[0], vel.c[1], vel.c[2], grid_.h, 1.0 / alpha_dt,
+                                                     box, {masks_.outside_u, impose_flow_rate_});
+  const double du = impose_flow_rate_ ? flow_rate_correction(open_sum) : 0.0;
   bc_.fill_scalar(state_.p);
-  return kernels::subtract_gradient(vel.c[0], vel.c[1], vel.c[2], state_.p, grid_.h, alpha_dt, masks_.outside_u, box, step);
+  kernels::subtract_gradient(vel.c[0], vel.c[1], vel.c[2], state_.p, grid_.h, alpha_dt, box, step, {masks_.open_u, du});
+  return du;
 }
 
-// Adds du to u on the open faces (w du on the forced layer) so the bulk velocity is U_b again
-// (U_b - frame_u in the grid's frame); returns du, the mean pressure gradient times alpha dt.
-// open_sum: this rank's open-face sum of u as it is now (from project).
-double FlowSolver::correct_flow_rate(double open_sum) {
+// du added to u on the open faces (w du on the forced layer) brings the bulk velocity to U_b
+// (U_b - frame_u in the grid's frame): du = (U_b - bulk) A_flow / A_open, the mean pressure
+// gradient times alpha dt. open_sum: this rank's open-face sum of u before the correction.
+double FlowSolver::flow_rate_correction(double open_sum) const {
   const double bulk = lab_bulk_velocity(open_sum) - frame_u_;
-  // du moves the flow rate by du times the open faces' (weighted) area
-  const double du = (cfg_.flow.bulk_velocity - frame_u_ - bulk) * (flow_faces_ / open_faces_);
-  kernels::add_open_x_velocity(state_.vel.c[0], masks_.open_u, du, grid_.interior());
-  return du;
+  return (cfg_.flow.bulk_velocity - frame_u_ - bulk) * (flow_faces_ / open_faces_);
 }
 
 // Q / A in the grid's frame: Q = sum over the faces inside the pipe of (u - u_wall) dA, plus

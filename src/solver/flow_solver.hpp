@@ -67,10 +67,13 @@ class FlowSolver {
 
  private:
   void build_wall_masks();
+  // The projection, and with a constant flow rate its uniform correction in the same pass;
+  // returns that correction du (0 without one).
   double project(double alpha_dt, const kernels::StepPressure& step = {});
   void predict(double dt, int substep, const SolidCoupling* solids, const Box& mixture);
   void predict_implicit_viscosity(double t_next, double dt, int substep);
-  double correct_flow_rate(double open_sum);
+  // du that brings the bulk velocity back to U_b, from this rank's open-face sum of u
+  double flow_rate_correction(double open_sum) const;
   // lab_bulk_velocity from this rank's open-face sum of u
   double lab_bulk_velocity(double open_sum) const;
 

@@ -32,11 +32,8 @@ TEST(StepPressure, IsTheAlphaWeightedSumOfTheSubstepPressures) {
   Field3 phi[Rk3::stages];
   for (auto& p : phi) p = random_field("phi", gen);
   for (int s = 0; s < Rk3::stages; ++s) {
-    const double sum = kernels::subtract_gradient(u, v, w, phi[s], h, 0.3 * Rk3::alpha(s), kernels::Mask2(), box,
-                                                  {p_step, Rk3::alpha(s), s == 0});
-    const double sum_ref =
-        kernels::subtract_gradient(u_ref, v_ref, w_ref, phi[s], h, 0.3 * Rk3::alpha(s), kernels::Mask2(), box);
-    EXPECT_EQ(sum, sum_ref) << "substep " << s;
+    kernels::subtract_gradient(u, v, w, phi[s], h, 0.3 * Rk3::alpha(s), box, {p_step, Rk3::alpha(s), s == 0});
+    kernels::subtract_gradient(u_ref, v_ref, w_ref, phi[s], h, 0.3 * Rk3::alpha(s), box);
   }
   // the velocity: the same operations in the same order
   EXPECT_EQ(test::max_difference(u, u_ref, box).diff, 0.0);
