@@ -22,7 +22,8 @@ CALLS_PER_STEP = {
 }
 NAMES = {
     "MomentumRhs": "momentum_rhs (3 comp.)", "MomentumPredict": "momentum_predict (rhs + RK3 update)",
-    "Divergence": "divergence", "SubtractGradientStepPressure": "subtract_gradient + step pressure",
+    "Divergence": "divergence + flow-rate sum",
+    "SubtractGradientStepPressure": "subtract_gradient + step pressure + flow-rate shift",
     "SubtractGradient": "subtract_gradient", "FillGhosts": "fill_ghosts y,z (u,v,w)",
     "FillVelocity": "fill_velocity (x halo + y,z ghosts)", "ScalarAdvectionRhs": "scalar_advection_rhs (psi)",
     "TensorTransportRhs": "tensor_transport_rhs (B)", "AddElasticForce": "add_elastic_force",
