@@ -162,6 +162,23 @@ void BM_SubtractGradientStepPressure(benchmark::State& state) {
   });
 }
 
+// penalize_wall_layer for u, v, w: the pipe's interpolated wall on its first fluid layer (a list of
+// (j, k) points, every x). Minimal: on each layer cell read u and its inner neighbour, write u =
+// 3 doubles per layer cell (the layer is ~4 % of the cells at 128 x 64^2; ns_per_cell is per
+// interior cell, like every other kernel).
+void BM_PenalizeWallLayer(benchmark::State& state) {
+  PipeCase c(state, false);
+  const auto& vel = c.flow.state().vel.c;
+  const auto& m = c.flow.masks();
+  const Box box = c.grid.interior();
+  double layer_cells = 0.0;
+  for (int d = 0; d < 3; ++d) layer_cells += double(m.layer[d].extent(0)) * (box.hi[0] - box.lo[0]);
+  time_kernel(state, c.grid, 8.0 * 3 * layer_cells, [&] {
+    for (int d = 0; d < 3; ++d)
+      kernels::penalize_wall_layer(vel[d], m.layer[d], m.weight[d], m.neighbour[d], 0.01, box, "wall_layer");
+  });
+}
+
 // fill_ghosts of u, v, w in y and z with the pipe's wall rules (the kernel calls of
 // BoundaryConditions::fill_velocity without the x halo exchange). Minimal: every ghost value
 // written once from one owned value read: 2 doubles per ghost value, kGhost layers on each
@@ -235,6 +252,7 @@ EULERFSI_KERNEL_BENCH(BM_MomentumPredict);
 EULERFSI_KERNEL_BENCH(BM_Divergence);
 EULERFSI_KERNEL_BENCH(BM_SubtractGradient);
 EULERFSI_KERNEL_BENCH(BM_SubtractGradientStepPressure);
+EULERFSI_KERNEL_BENCH(BM_PenalizeWallLayer);
 EULERFSI_KERNEL_BENCH(BM_FillGhosts);
 EULERFSI_KERNEL_BENCH(BM_FillVelocity);
 EULERFSI_KERNEL_BENCH(BM_ScalarAdvectionRhs);

@@ -18,7 +18,7 @@ CALLS_PER_STEP = {
     "MomentumRhs": 3, "MomentumPredict": 3, "Divergence": 3, "SubtractGradient": 3,
     "SubtractGradientStepPressure": 3, "FillGhosts": 3,
     "FillVelocity": 3, "ScalarAdvectionRhs": 3, "TensorTransportRhs": 3, "AddElasticForce": 3,
-    "PoissonSolve": 3,
+    "PoissonSolve": 3, "PenalizeWallLayer": 3,
 }
 NAMES = {
     "MomentumRhs": "momentum_rhs (3 comp.)", "MomentumPredict": "momentum_predict (rhs + RK3 update)",
@@ -27,7 +27,7 @@ NAMES = {
     "SubtractGradient": "subtract_gradient", "FillGhosts": "fill_ghosts y,z (u,v,w)",
     "FillVelocity": "fill_velocity (x halo + y,z ghosts)", "ScalarAdvectionRhs": "scalar_advection_rhs (psi)",
     "TensorTransportRhs": "tensor_transport_rhs (B)", "AddElasticForce": "add_elastic_force",
-    "PoissonSolve": "Poisson solve (FFTW, estimate)",
+    "PoissonSolve": "Poisson solve (FFTW, estimate)", "PenalizeWallLayer": "penalize_wall_layer (u,v,w; pipe wall)",
 }
 
 

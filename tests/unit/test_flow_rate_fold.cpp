@@ -9,6 +9,7 @@
 #include <string>
 
 #include "kernels/projection.hpp"
+#include "support/device_test.hpp"
 #include "support/field_compare.hpp"
 #include "support/periodic_fill.hpp"
 #include "support/random_fields.hpp"
@@ -96,7 +97,7 @@ TEST(FlowRateFold, CorrectionAddsTheShiftAsTheSeparatePassDid) {
 // What the fold rests on: with phi periodic in x the correction moves the open-face sum by du times
 // the open faces' weights only; u*'s flow rate is the corrected one's to round-off. With phi not
 // periodic (ghost x plane off by 1) the sum moves by O(1): the test sees the difference.
-TEST(FlowRateFold, GradientStepKeepsTheFlowRateOnAPeriodicLine) {
+DEVICE_TEST(FlowRateFold, GradientStepKeepsTheFlowRateOnAPeriodicLine) {
   std::mt19937 gen(13);
   Field3 u = random_field("u", gen), v = random_field("v", gen), w = random_field("w", gen);
   const Field3 phi = random_field("phi", gen);
