@@ -121,8 +121,9 @@ DEVICE_TEST(FlowRateFold, GradientStepKeepsTheFlowRateOnAPeriodicLine) {
   EXPECT_NEAR(after, before + du * weights, 4.0 * kCells * kEps * scale);
 
   // a phi whose x ghosts are not periodic: the telescoping sum no longer vanishes
+  const int ghost_plane = kGhost + kN[0];  // a local: device code cannot read the namespace's array
   Kokkos::parallel_for("shift_ghost", Policy2({0, 0}, {kExt[1], kExt[2]}), KOKKOS_LAMBDA(int j, int k) {
-    phi(kGhost + kN[0], j, k) += 1.0;
+    phi(ghost_plane, j, k) += 1.0;
   });
   const double before_bad = kernels::open_face_sum(u, chi, kBox);
   kernels::subtract_gradient(u, v, w, phi, kH, factor, kBox);
