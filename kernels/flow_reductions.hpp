@@ -34,7 +34,7 @@ struct SignalRate {
     m = compat::fmax(m, rate(u(i, j, k), v(i, j, k), w(i, j, k), c, ix, iy, iz));
   }
   // host: the row's maximum in kLanes running maxima, so the loop vectorises
-  double row_max(int i, int j, int k0, int k1) const {
+  double row_reduce(int i, int j, int k0, int k1) const {
     constexpr int kLanes = 8;
     const double* KOKKOS_RESTRICT ur = &u(i, j, 0);
     const double* KOKKOS_RESTRICT vr = &v(i, j, 0);
@@ -60,7 +60,10 @@ struct SignalRate {
 // with c the fastest elastic wave speed sqrt(G) (0 without solids)
 inline double max_signal_rate(const Field3& u, const Field3& v, const Field3& w, const double h[3], double c,
                               const Box& box) {
-  return max_rows("eulerfsi::diag::cfl", box, SignalRate{u, v, w, 1.0 / h[0], 1.0 / h[1], 1.0 / h[2], c});
+  double result = 0.0;
+  reduce_rows("eulerfsi::diag::cfl", box, SignalRate{u, v, w, 1.0 / h[0], 1.0 / h[1], 1.0 / h[2], c},
+              Kokkos::Max<double>(result));
+  return result;
 }
 
 // An x-face's share of the flow rate: 1 - chi_u (1 without a mask).

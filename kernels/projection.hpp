@@ -8,7 +8,7 @@
 namespace eulerfsi::kernels {
 
 // The flow rate through the x-faces, taken in a pass that reads u anyway: the sum over the faces
-// open to the flow of (1 - chi_u) u (kernels::open_face_sum's sum, in sum_cells' order).
+// open to the flow of (1 - chi_u) u (kernels::open_face_sum's sum, in open_row_sum's order).
 // Inactive: nothing summed, 0 returned.
 struct OpenFaceSum {
   Mask2 chi_u;  // empty: every face open
@@ -68,7 +68,7 @@ struct DivergenceAt {
     EULERFSI_INDEPENDENT_LOOP
     for (int k = k0; k < k1; ++k) o[k] = (uc[k] - um[k]) * x + (vc[k] - vm[k]) * y + (wc[k] - wc[k - 1]) * z;
   }
-  double row_sum(int i, int j, int k0, int k1) const {
+  double row_reduce(int i, int j, int k0, int k1) const {
     row(i, j, k0, k1);
     return open_row_sum(&u(i, j, 0), chi_u.extent(0) > 0 ? &chi_u(j, 0) : nullptr, k0, k1);
   }
@@ -85,7 +85,9 @@ inline double divergence_shifted(const Out& out, int shift, const Field3& u, con
     for_each_row("eulerfsi::projection::divergence", box, div);
     return 0.0;
   }
-  return sum_rows("eulerfsi::projection::divergence", box, div);
+  double sum = 0.0;
+  reduce_rows("eulerfsi::projection::divergence", box, div, Kokkos::Sum<double>(sum));
+  return sum;
 }
 
 inline double divergence(const Field3& out, const Field3& u, const Field3& v, const Field3& w, const double h[3],

@@ -12,8 +12,8 @@ import re
 
 BEGIN, END = "<!-- results:begin -->", "<!-- results:end -->"
 
-# how often each kernel runs in one RK3 step (3 substeps); fill_velocity: after the flow-rate
-# correction in every substep (after the predictor only the divergence's stencil is filled)
+# how often each kernel runs in one RK3 step (3 substeps); fill_velocity: after the projection
+# (with its flow-rate shift) in every substep (after the predictor only the divergence's stencil is filled)
 CALLS_PER_STEP = {
     "MomentumRhs": 3, "MomentumPredict": 3, "Divergence": 3, "SubtractGradient": 3,
     "SubtractGradientStepPressure": 3, "FillGhosts": 3,

@@ -64,37 +64,19 @@ void reduce_cells(const char* label, const Box& b, const F& f, const Reducer& re
   }
 }
 
-// The sum over the box of a body with a row method, acc += f.row_sum(i, j, k0, k1) on host
-// backends (which runs the row's k loop itself, so it vectorises); GPUs call f(i, j, k, acc).
-template <class F>
-double sum_rows(const char* label, const Box& b, const F& f) {
-  double result = 0.0;
+// The same for a body with a row method, reducer.join(acc, f.row_reduce(i, j, k0, k1)) on host
+// backends (the row's k loop runs in the body, so it vectorises); GPUs call f(i, j, k, acc).
+template <class F, class Reducer>
+void reduce_rows(const char* label, const Box& b, const F& f, const Reducer& reducer) {
+  using value_type = typename Reducer::value_type;
   if constexpr (kHostKernels) {
     const int k0 = b.lo[2], k1 = b.hi[2];
-    Kokkos::parallel_reduce(label, plane_policy(b), KOKKOS_LAMBDA(int i, int j, double& acc) {
-      acc += f.row_sum(i, j, k0, k1);
-    }, Kokkos::Sum<double>(result));
+    Kokkos::parallel_reduce(label, plane_policy(b), KOKKOS_LAMBDA(int i, int j, value_type& acc) {
+      reducer.join(acc, f.row_reduce(i, j, k0, k1));
+    }, reducer);
   } else {
-    Kokkos::parallel_reduce(label, b.policy(), f, Kokkos::Sum<double>(result));
+    Kokkos::parallel_reduce(label, b.policy(), f, reducer);
   }
-  return result;
-}
-
-// The same for a maximum: acc = max(acc, f.row_max(i, j, k0, k1)) on hosts, f(i, j, k, acc) on
-// GPUs (f keeps acc the larger of the two). A maximum does not depend on the order: exact.
-template <class F>
-double max_rows(const char* label, const Box& b, const F& f) {
-  double result = 0.0;
-  if constexpr (kHostKernels) {
-    const int k0 = b.lo[2], k1 = b.hi[2];
-    Kokkos::parallel_reduce(label, plane_policy(b), KOKKOS_LAMBDA(int i, int j, double& acc) {
-      const double m = f.row_max(i, j, k0, k1);
-      acc = m > acc ? m : acc;
-    }, Kokkos::Max<double>(result));
-  } else {
-    Kokkos::parallel_reduce(label, b.policy(), f, Kokkos::Max<double>(result));
-  }
-  return result;
 }
 
 }  // namespace eulerfsi
