@@ -95,6 +95,15 @@ void SolidPhase::add_elastic_force(const kernels::Velocity& rhs) const {
   }
 }
 
+void SolidPhase::add_elastic_force_to_predictor(const kernels::Velocity& rhs, const kernels::Velocity& star,
+                                                const kernels::PredictorTerms& terms) const {
+  for (const auto& body : bodies_) {
+    const Box faces = elastic_faces(body);
+    if (faces.empty()) continue;
+    kernels::add_elastic_force_to_predictor(rhs, star, terms, body.psi, body.b, body.b_prev, body.G, grid_.h, faces);
+  }
+}
+
 Box SolidPhase::elastic_force_region() const {
   Box region{{0, 0, 0}, {0, 0, 0}};
   for (const auto& body : bodies_) region = bounding_box(region, elastic_faces(body));

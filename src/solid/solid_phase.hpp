@@ -42,6 +42,8 @@ class SolidPhase final : public SolidCoupling {
   void mixture_viscosity(const Field3& mu, double mu_fluid, double background) override;
   Box viscosity_region() const override { return mu_region_; }
   void add_elastic_force(const kernels::Velocity& rhs) const override;
+  void add_elastic_force_to_predictor(const kernels::Velocity& rhs, const kernels::Velocity& star,
+                                      const kernels::PredictorTerms& terms) const override;
   Box elastic_force_region() const override;
   double max_wave_speed() const override;
 

@@ -233,9 +233,10 @@ const char* const kWallLabels[3] = {"eulerfsi::penalization::wall_u", "eulerfsi:
 }  // namespace
 
 // u* = u + dt (gamma rhs + zeta rhs_old), the pipe wall penalized implicitly, with rhs computed in
-// the same pass (kernels/momentum_predictor.hpp). The solid region (where mu is the mixture's,
-// else the faces the elastic force reaches) is a pass of its own that adds the force, which is
-// written into rhs first; the rest of the box takes the constant-viscosity pass.
+// the same pass (kernels/momentum_predictor.hpp). With one viscosity the elastic force is added to
+// rhs^k and u* after that pass, on the bodies' faces only (u* is linear in rhs^k). With a mixture
+// viscosity its region (with the force's faces) is a pass of its own, the force written into rhs
+// first, and the rest of the box takes the constant-viscosity pass.
 void FlowSolver::predict(double dt, int s, const SolidCoupling* solids, const Box& mixture) {
   const Box box = grid_.interior();
   auto& vel = state_.vel;
@@ -251,21 +252,19 @@ void FlowSolver::predict(double dt, int s, const SolidCoupling* solids, const Bo
     terms.chi_stride[c] = chi.extent(0) > 0 ? long(chi.stride(0)) : 0;
   }
   terms.u_wall[0] = -frame_u_;  // the wall is at rest in the laboratory: u_wall = -frame_u in the grid's frame
-  Box forced{{0, 0, 0}, {0, 0, 0}};
-  if (solids) forced = intersection(bounding_box(mixture, solids->elastic_force_region()), box);
-  if (!forced.empty()) {
+  if (mixture.empty()) {
+    // one viscosity: the whole grid in one pass, the elastic force added after it on the bodies' faces
+    kernels::momentum_predict(rhs_new_, vel, mu_explicit_, grid_.h, terms, false, box);
+    if (solids) solids->add_elastic_force_to_predictor(rhs_new_, rhs_old_, terms);
+  } else {
+    // the mixture's viscosity region (with the force's faces) takes the variable-viscosity pass
+    const Box forced = intersection(bounding_box(mixture, solids->elastic_force_region()), box);
     for (int c = 0; c < 3; ++c) kernels::fill_box(rhs_new_.c[c], 0.0, forced);
     solids->add_elastic_force(rhs_new_);
-  }
-  Box parts[6];
-  const int n = difference(box, forced, parts);
-  for (int p = 0; p < n; ++p) kernels::momentum_predict(rhs_new_, vel, mu_explicit_, grid_.h, terms, false, parts[p]);
-  if (!forced.empty()) {
-    if (mixture.empty()) {
-      kernels::momentum_predict(rhs_new_, vel, mu_explicit_, grid_.h, terms, true, forced);
-    } else {
-      kernels::momentum_predict(rhs_new_, vel, mu_, grid_.h, terms, forced);
-    }
+    Box parts[6];
+    const int n = difference(box, forced, parts);
+    for (int p = 0; p < n; ++p) kernels::momentum_predict(rhs_new_, vel, mu_explicit_, grid_.h, terms, false, parts[p]);
+    kernels::momentum_predict(rhs_new_, vel, mu_, grid_.h, terms, forced);
   }
   // u* is in rhs_old, rhs^k in rhs_new: u* becomes the velocity, rhs^k the next rhs^(k-1), u^k the scratch
   for (int c = 0; c < 3; ++c) {

@@ -3,6 +3,7 @@
 // (src/solid/): the solver calls these and knows nothing else about solids.
 //   du/dt + div(u u) = -grad p + div[2 mu(psi) E] + div[sum_s psi_s G_s (B_s - I)] + ...
 #include "kernels/momentum.hpp"
+#include "kernels/predictor_terms.hpp"
 
 namespace eulerfsi {
 
@@ -20,6 +21,10 @@ class SolidCoupling {
   virtual Box viscosity_region() const = 0;
   // rhs_D += d/dx_E [ psi G ((B^k + B^(k-1))/2 - I)_DE ] for every body.
   virtual void add_elastic_force(const kernels::Velocity& rhs) const = 0;
+  // The same force after a predictor that left it out (kernels::ElasticForceOnPredictor): rhs^k
+  // += f and u* (`star`) += terms.a f / (1 + pen), with the predictor's terms.
+  virtual void add_elastic_force_to_predictor(const kernels::Velocity& rhs, const kernels::Velocity& star,
+                                              const kernels::PredictorTerms& terms) const = 0;
   // A box holding every face add_elastic_force() writes (storage indices; empty: none).
   virtual Box elastic_force_region() const = 0;
   // Fastest elastic shear-wave speed sqrt(G) among the bodies (enters the CFL condition).

@@ -1,7 +1,8 @@
 // The fused momentum predictor (kernels/momentum_predictor.hpp: rhs^k and u* in one pass, u*
 // over rhs^(k-1)) against momentum_rhs followed by the RK3 update written out on the host, on random
 // fields: with and without the wall mask, with a moving wall, with the constant and a variable
-// viscosity, with a force in rhs, over the whole box and over a sub-box. Also the box difference
+// viscosity, with a force in rhs, over the whole box and over a sub-box; the elastic force added
+// after the predictor against the same force inside it. Also the box difference
 // the solver splits the constant-viscosity pass with.
 #include <gtest/gtest.h>
 
@@ -9,6 +10,7 @@
 #include <random>
 #include <string>
 
+#include "kernels/elastic_force.hpp"
 #include "kernels/momentum_predictor.hpp"
 #include "kernels/time_update.hpp"
 #include "support/device_test.hpp"
@@ -179,6 +181,61 @@ TEST(MomentumPredictor, PerCellFormEqualsTheSweep) {
       for (int k = box.lo[2]; k < box.hi[2]; ++k) f(i, j, k);
   EXPECT_LE(max_relative_difference(rhs_cell, rhs_sweep, box), 1e-14);
   EXPECT_LE(max_relative_difference(star_cell, star_sweep, box), 1e-14);
+}
+
+// The elastic force added to rhs^k and u* after a predictor without it (the solver's path with one
+// viscosity) against the force written into rhs before the predictor (its path with a mixture
+// viscosity): rhs^k = r + f in both (bit for bit: one addition either way); u* differs by the
+// rounding of a (r + f) against a r + a f / (1 + pen), a few units in the last place. psi is zero
+// on part of the box (faces skipped there), the wall mask covers some rows (pen = 40).
+DEVICE_TEST(MomentumPredictor, ElasticForceAfterThePredictorEqualsTheForceInside) {
+  std::mt19937 gen(11);
+  const double h[3] = {0.1, 0.125, 0.08}, mu0 = 0.05, G = 3.0;
+  const kernels::Velocity u = random_velocity("u", gen), rhs_old = random_velocity("r", gen);
+  const kernels::Mask2 chi[3] = {random_mask(gen), random_mask(gen), random_mask(gen)};
+  // psi in [-1, 1) clipped at 0: about half of the cells outside the body
+  const Field3 psi = random_field("psi", gen, -1.0, 1.0);
+  Kokkos::parallel_for("test::clip_psi", Kokkos::RangePolicy<>(0, psi.size()), KOKKOS_LAMBDA(size_t n) {
+    psi.data()[n] = psi.data()[n] > 0.0 ? psi.data()[n] : 0.0;
+  });
+  kernels::Tensor6 b, bp;
+  for (int s = 0; s < kernels::kTensorComponents; ++s) {
+    const double centre = s < 3 ? 1.0 : 0.0;
+    b.c[s] = random_field("b", gen, centre - 0.2, centre + 0.2);
+    bp.c[s] = random_field("bp", gen, centre - 0.2, centre + 0.2);
+  }
+  const Box box{{kGhost, kGhost, kGhost}, {kExt[0] - kGhost, kExt[1] - kGhost, kExt[2] - kGhost}};
+  auto terms_for = [&](const kernels::Velocity& star) {
+    kernels::PredictorTerms t;
+    t.a = 0.004;
+    t.b = -0.002;
+    t.penal = 40.0;
+    t.u_wall[0] = 0.7;
+    for (int c = 0; c < 3; ++c) {
+      t.rhs_old_to_star[c] = star.c[c].data();
+      t.chi[c] = chi[c].data();
+      t.chi_stride[c] = long(chi[c].stride(0));
+    }
+    return t;
+  };
+  // inside: rhs = f on entry, the forced predictor adds the momentum terms
+  const kernels::Velocity star_inside = copy_of(rhs_old), rhs_inside = copy_of(rhs_old);
+  for (int c = 0; c < 3; ++c) Kokkos::deep_copy(rhs_inside.c[c], 0.0);
+  kernels::add_elastic_force(rhs_inside, psi, b, bp, G, h, box);
+  kernels::momentum_predict(rhs_inside, u, mu0, h, terms_for(star_inside), true, box);
+  // after: the plain predictor, then the force on rhs^k and u*
+  const kernels::Velocity star_after = copy_of(rhs_old), rhs_after = copy_of(rhs_old);
+  const kernels::PredictorTerms terms_after = terms_for(star_after);
+  kernels::momentum_predict(rhs_after, u, mu0, h, terms_after, false, box);
+  kernels::add_elastic_force_to_predictor(rhs_after, star_after, terms_after, psi, b, bp, G, h, box);
+  Kokkos::fence();
+  EXPECT_EQ(max_relative_difference(rhs_after, rhs_inside, box), 0.0);
+  EXPECT_LE(max_relative_difference(star_after, star_inside, box), 1e-14);
+  // the force is not negligible: it moves u* by more than the tolerance
+  const kernels::Velocity star_plain = copy_of(rhs_old), rhs_plain = copy_of(rhs_old);
+  kernels::momentum_predict(rhs_plain, u, mu0, h, terms_for(star_plain), false, box);
+  Kokkos::fence();
+  EXPECT_GT(max_relative_difference(star_plain, star_inside, box), 1e-6);
 }
 
 // a \ b as disjoint boxes: every cell of a is in exactly one part or in b.
