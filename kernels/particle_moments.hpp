@@ -271,8 +271,9 @@ KOKKOS_INLINE_FUNCTION double momentum_term(int term, const WindowField& psi, co
     default:
       return w == 0.0 ? 0.0
                       : 0.5 * w *
-                            (elastic_force_at_face<D>(psi, b, bp, G, inv_h, i, j, k) +
-                             elastic_force_at_face<D>(psi, b, bp, G, inv_h, i - di, j - dj, k - dk));
+                            (elastic_force_at_face<D>(psi, b, bp, ShearFromB{psi, b, bp, G}, G, inv_h, i, j, k) +
+                             elastic_force_at_face<D>(psi, b, bp, ShearFromB{psi, b, bp, G}, G, inv_h, i - di, j - dj,
+                                                      k - dk));
   }
 }
 

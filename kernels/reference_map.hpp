@@ -31,11 +31,12 @@ struct ReferenceShape {
   double top = 0.0;              // layer: y of its upper surface
   double shift = 0.0;            // phi0 - shift: the level moved to keep the volume
 
-  // phi0(X) and its gradient in the reference configuration.
-  KOKKOS_INLINE_FUNCTION double phi(const double X[3], double grad[3]) const {
+  // phi0(X) + shift (the level before the volume correction moves it) and its gradient in the
+  // reference configuration.
+  KOKKOS_INLINE_FUNCTION double unshifted(const double X[3], double grad[3]) const {
     if (!sphere) {
       grad[0] = 0.0, grad[1] = 1.0, grad[2] = 0.0;
-      return X[1] - top - shift;
+      return X[1] - top;
     }
     double d[3], r2 = 0.0;
     for (int a = 0; a < 3; ++a) {
@@ -45,13 +46,17 @@ struct ReferenceShape {
     }
     const double r = compat::sqrt(r2);
     for (int a = 0; a < 3; ++a) grad[a] = r > 0.0 ? d[a] / r : (a == 0 ? 1.0 : 0.0);
-    return r - radius - shift;
+    return r - radius;
   }
+  // phi0(X) and its gradient.
+  KOKKOS_INLINE_FUNCTION double phi(const double X[3], double grad[3]) const { return unshifted(X, grad) - shift; }
 };
 
 // Where the map is known, by distance from the solid ("levels"): 0 unknown, 1 solid (cell centre
 // inside the body), s + 1 filled by extrapolation sweep s.
 constexpr double kLevelSolid = 1.0;
+// Whether psi is derived at a cell of this level (else psi = 0 and B = I).
+KOKKOS_INLINE_FUNCTION bool derived_level(double l, double max_level) { return l >= kLevelSolid && l <= max_level; }
 
 // grad q at the cell centre by central differences: G[a][b] = dq_a/dx_b.
 KOKKOS_INLINE_FUNCTION void displacement_gradient(const Vector3& q, const double inv_2h[3], int i, int j, int k,
@@ -63,16 +68,21 @@ KOKKOS_INLINE_FUNCTION void displacement_gradient(const Vector3& q, const double
   }
 }
 
-// Signed distance to the body's surface in the current configuration, d = phi0(xi) / |grad_x phi0|,
-// with grad_x phi0 = (grad xi)^T grad_X phi0 and grad xi = I + grad q. `normal_h` (if given) gets
-// the grid spacing along the surface normal, |n . diag(h)|, which sets the width of psi's edge.
+// What psi's edge at a cell takes from the map, apart from the level shift: phi0(xi) + shift,
+// |grad_x phi0| with grad_x phi0 = (grad xi)^T grad_X phi0 and grad xi = I + grad q (1 where it
+// vanishes: no division then), and the grid spacing along the surface normal, |n . diag(h)|, which
+// sets the width of psi's edge. The signed distance is (phi0 + shift - shift) / |grad_x phi0|.
+struct EdgeGeometry {
+  double unshifted_phi, gradient_norm, normal_h;
+  KOKKOS_INLINE_FUNCTION double distance(double shift) const { return (unshifted_phi - shift) / gradient_norm; }
+};
+
 // G: grad q at the cell (displacement_gradient).
-KOKKOS_INLINE_FUNCTION double current_distance(const Vector3& q, const ReferenceShape& shape, const double x[3],
-                                               const double inv_2h[3], int i, int j, int k, const double G[3][3],
-                                               double* normal_h = nullptr) {
+KOKKOS_INLINE_FUNCTION EdgeGeometry edge_geometry(const Vector3& q, const ReferenceShape& shape, const double x[3],
+                                                  const double inv_2h[3], int i, int j, int k, const double G[3][3]) {
   const double X[3] = {x[0] + q.c[0](i, j, k), x[1] + q.c[1](i, j, k), x[2] + q.c[2](i, j, k)};
   double n[3];
-  const double phi = shape.phi(X, n);
+  const double phi0 = shape.unshifted(X, n);
   double g2 = 0.0, gh2 = 0.0;
   for (int b = 0; b < 3; ++b) {
     double gb = n[b];
@@ -81,8 +91,17 @@ KOKKOS_INLINE_FUNCTION double current_distance(const Vector3& q, const Reference
     const double hb = 0.5 / inv_2h[b];
     gh2 += gb * gb * hb * hb;
   }
-  if (normal_h) *normal_h = g2 > 0.0 ? compat::sqrt(gh2 / g2) : 0.5 / inv_2h[0];
-  return g2 > 0.0 ? phi / compat::sqrt(g2) : phi;
+  return {phi0, g2 > 0.0 ? compat::sqrt(g2) : 1.0, g2 > 0.0 ? compat::sqrt(gh2 / g2) : 0.5 / inv_2h[0]};
+}
+
+// Signed distance to the body's surface in the current configuration, d = phi0(xi) / |grad_x phi0|;
+// `normal_h` (if given) gets the spacing along the normal (EdgeGeometry).
+KOKKOS_INLINE_FUNCTION double current_distance(const Vector3& q, const ReferenceShape& shape, const double x[3],
+                                               const double inv_2h[3], int i, int j, int k, const double G[3][3],
+                                               double* normal_h = nullptr) {
+  const EdgeGeometry e = edge_geometry(q, shape, x, inv_2h, i, j, k, G);
+  if (normal_h) *normal_h = e.normal_h;
+  return e.distance(shape.shift);
 }
 KOKKOS_INLINE_FUNCTION double current_distance(const Vector3& q, const ReferenceShape& shape, const double x[3],
                                                const double inv_2h[3], int i, int j, int k,
@@ -265,28 +284,44 @@ inline void extrapolation_sweep(const Vector3& q, const WindowField& level, int 
 // psi at a cell: H_eps(-d) with eps = width x (spacing along the normal), on the known cells whose
 // central differences read known cells (1 <= level <= max_level); -1 elsewhere (psi = 0 and B = I there).
 // G gets grad q where psi is derived.
+// `edge` (if given) gets the cell's EdgeGeometry where psi is derived.
 KOKKOS_INLINE_FUNCTION double psi_of_map(const Vector3& q, const WindowField& level, const ReferenceShape& shape,
                                          const CellCentres& xc, const double inv_2h[3], double width, double max_level,
-                                         int i, int j, int k, double G[3][3]) {
-  const double l = level(i, j, k);
-  if (l < kLevelSolid || l > max_level) return -1.0;
+                                         int i, int j, int k, double G[3][3], EdgeGeometry* edge = nullptr) {
+  if (!derived_level(level(i, j, k), max_level)) return -1.0;
   const double x[3] = {xc(0, i), xc(1, j), xc(2, k)};
-  double hn = 0.0;
   displacement_gradient(q, inv_2h, i, j, k, G);
-  const double d = current_distance(q, shape, x, inv_2h, i, j, k, G, &hn);
-  return smoothed_heaviside(-d, width * hn);
+  const EdgeGeometry e = edge_geometry(q, shape, x, inv_2h, i, j, k, G);
+  if (edge) *edge = e;
+  return smoothed_heaviside(-e.distance(shape.shift), width * e.normal_h);
 }
 
+// Where solid_from_map() leaves the EdgeGeometry of the cells where it derives psi, for
+// psi_at_shift(): phi0 + shift, the gradient's norm and the edge's half-width eps = width x normal_h.
+struct EdgeFields {
+  Scratch3 f;
+  KOKKOS_FORCEINLINE_FUNCTION void store(int i, int j, int k, const EdgeGeometry& e, double eps) const {
+    f.c[0](i, j, k) = e.unshifted_phi;
+    f.c[1](i, j, k) = e.gradient_norm;
+    f.c[2](i, j, k) = eps;
+  }
+};
+
+// edges: where to leave the EdgeGeometry (null fields: nowhere).
 inline void solid_from_map(const WindowField& psi, const Tensor6& b, const Vector3& q, const WindowField& level,
                            const ReferenceShape& shape, const CellCentres& xc, double width, double max_level,
-                           const double h[3], const Box& box) {
+                           const double h[3], const Box& box, const EdgeFields& edges = {}) {
   const double i0 = 0.5 / h[0], i1 = 0.5 / h[1], i2 = 0.5 / h[2];
   const Vector3 m = q;
   const Tensor6 bb = b;
+  const bool keep_edges = edges.f.c[0].allocated();
   for_each_cell("eulerfsi::refmap::psi_and_b", box, KOKKOS_LAMBDA(int i, int j, int k) {
     const double inv_2h[3] = {i0, i1, i2};
     double G[3][3];
-    const double p = psi_of_map(m, level, shape, xc, inv_2h, width, max_level, i, j, k, G);
+    EdgeGeometry e{0.0, 1.0, 0.0};
+    const double p = psi_of_map(m, level, shape, xc, inv_2h, width, max_level, i, j, k, G, &e);
+    // a derived psi that rounded below 0 too: psi_at_shift() clips it as psi_from_map() does
+    if (keep_edges && derived_level(level(i, j, k), max_level)) edges.store(i, j, k, e, width * e.normal_h);
     if (p < 0.0) {
       psi(i, j, k) = 0.0;
       for (int c = 0; c < kTensorComponents; ++c) bb.c[c](i, j, k) = c < 3 ? 1.0 : 0.0;
@@ -330,6 +365,22 @@ inline void psi_from_map(const WindowField& psi, const Vector3& q, const WindowF
     const double inv_2h[3] = {i0, i1, i2};
     double G[3][3];
     psi(i, j, k) = compat::fmax(0.0, psi_of_map(m, level, shape, xc, inv_2h, width, max_level, i, j, k, G));
+  });
+}
+
+// psi again after the level shift moved (the volume correction), from solid_from_map()'s edges:
+// psi = max(0, H_eps(-(phi0 + shift_old - shift) / |grad_x phi0|)), the value psi_from_map() gives,
+// without the map's gradient and the shape's distance again.
+inline void psi_at_shift(const WindowField& psi, const EdgeFields& edges, const WindowField& level, double max_level,
+                         double shift, const Box& box) {
+  const Scratch3 e = edges.f;
+  for_each_cell("eulerfsi::refmap::psi_at_shift", box, KOKKOS_LAMBDA(int i, int j, int k) {
+    if (!derived_level(level(i, j, k), max_level)) {
+      psi(i, j, k) = 0.0;
+      return;
+    }
+    const EdgeGeometry g{e.c[0](i, j, k), e.c[1](i, j, k), 0.0};
+    psi(i, j, k) = compat::fmax(0.0, smoothed_heaviside(-g.distance(shift), e.c[2](i, j, k)));
   });
 }
 

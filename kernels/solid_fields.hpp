@@ -28,4 +28,10 @@ struct Tensor6 {
   WindowField c[kTensorComponents];
 };
 
+// Three cell-centred fields a kernel may overwrite: buffers of a solid model that hold nothing
+// between its substeps (SolidModel::scratch).
+struct Scratch3 {
+  WindowField c[3];
+};
+
 }  // namespace eulerfsi::kernels

@@ -214,7 +214,7 @@ void ReferenceMapModel::correct_volume(SolidBody& body, const Box& region) {
   area = comm_.sum(area);
   if (area <= 0.0) return;
   shape_.shift += (volume0_ - volume) / area;
-  kernels::psi_from_map(body.psi, q_, level_, shape_, centres_, kHalfWidthCells, kMaxDerivedLevel, grid_.h, support);
+  kernels::psi_at_shift(body.psi, edges(), level_, kMaxDerivedLevel, shape_.shift, support);
   fill(body.psi, region);
 }
 
@@ -245,7 +245,8 @@ void ReferenceMapModel::extrapolate(const Box& region) {
 }
 
 void ReferenceMapModel::derive_solid(SolidBody& body, const Box& region) {
-  kernels::solid_from_map(body.psi, body.b, q_, level_, shape_, centres_, kHalfWidthCells, kMaxDerivedLevel, grid_.h, region);
+  kernels::solid_from_map(body.psi, body.b, q_, level_, shape_, centres_, kHalfWidthCells, kMaxDerivedLevel, grid_.h, region,
+                          edges());
   fill(body.psi, region);
   for (int c = 0; c < kernels::kTensorComponents; ++c) fill(body.b.c[c], region);
 }

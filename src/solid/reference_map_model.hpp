@@ -36,6 +36,8 @@ class ReferenceMapModel final : public SolidModel {
   double edge_half_width_cells() const override;
   WindowField psi_at_half_width(const SolidBody& body, double width_cells) override;
   StepStart psi_at_step_start() const override { return {psi_step_start_, step_inv_dt_}; }
+  // the map's rhs buffer after the substep's swap: rewritten before the next substep reads it
+  kernels::Scratch3 scratch() override { return {{rhs_.c[0], rhs_.c[1], rhs_.c[2]}}; }
 
   // Every kernel on the whole slab instead of the active box, every field on the whole slab
   // instead of the window: the reference the box is tested against (tests/mpi/test_active_box.cpp);
@@ -65,6 +67,9 @@ class ReferenceMapModel final : public SolidModel {
   Box initial_window_need() const;
   static Box sphere_need(const SolidConfig& s, const Grid& g);
   void correct_volume(SolidBody& body, const Box& region);
+  // psi's edge geometry from derive_solid() for correct_volume(), in the scratch (within one
+  // substep: the elastic force takes the scratch after it)
+  kernels::EdgeFields edges() { return {scratch()}; }
 
   SolidConfig cfg_solid_;
   Grid grid_;

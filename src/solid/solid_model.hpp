@@ -70,6 +70,9 @@ class SolidModel {
     double inv_dt = 0.0;
   };
   virtual StepStart psi_at_step_start() const { return {}; }
+  // Three fields on psi's window that hold nothing between this model's substeps (its own
+  // buffers): the elastic force's shear stresses are written there (kernels::shear_stress).
+  virtual kernels::Scratch3 scratch() = 0;
 };
 
 std::shared_ptr<SolidModel> make_solid_model(const SolidConfig& solid, const CaseConfig& cfg, const Grid& grid,

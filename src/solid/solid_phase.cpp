@@ -91,7 +91,7 @@ void SolidPhase::add_elastic_force(const kernels::Velocity& rhs) const {
   for (const auto& body : bodies_) {
     const Box faces = elastic_faces(body);
     if (faces.empty()) continue;
-    kernels::add_elastic_force(rhs, body.psi, body.b, body.b_prev, body.G, grid_.h, faces);
+    kernels::add_elastic_force(rhs, body.psi, body.b, body.b_prev, body.model->scratch(), body.G, grid_.h, faces);
   }
 }
 
@@ -100,7 +100,8 @@ void SolidPhase::add_elastic_force_to_predictor(const kernels::Velocity& rhs, co
   for (const auto& body : bodies_) {
     const Box faces = elastic_faces(body);
     if (faces.empty()) continue;
-    kernels::add_elastic_force_to_predictor(rhs, star, terms, body.psi, body.b, body.b_prev, body.G, grid_.h, faces);
+    kernels::add_elastic_force_to_predictor(rhs, star, terms, body.psi, body.b, body.b_prev, body.model->scratch(),
+                                            body.G, grid_.h, faces);
   }
 }
 

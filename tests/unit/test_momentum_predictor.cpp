@@ -204,6 +204,7 @@ DEVICE_TEST(MomentumPredictor, ElasticForceAfterThePredictorEqualsTheForceInside
     b.c[s] = random_field("b", gen, centre - 0.2, centre + 0.2);
     bp.c[s] = random_field("bp", gen, centre - 0.2, centre + 0.2);
   }
+  const kernels::Scratch3 shear{{random_field("s", gen, 0, 1), random_field("s", gen, 0, 1), random_field("s", gen, 0, 1)}};
   const Box box{{kGhost, kGhost, kGhost}, {kExt[0] - kGhost, kExt[1] - kGhost, kExt[2] - kGhost}};
   auto terms_for = [&](const kernels::Velocity& star) {
     kernels::PredictorTerms t;
@@ -221,13 +222,13 @@ DEVICE_TEST(MomentumPredictor, ElasticForceAfterThePredictorEqualsTheForceInside
   // inside: rhs = f on entry, the forced predictor adds the momentum terms
   const kernels::Velocity star_inside = copy_of(rhs_old), rhs_inside = copy_of(rhs_old);
   for (int c = 0; c < 3; ++c) Kokkos::deep_copy(rhs_inside.c[c], 0.0);
-  kernels::add_elastic_force(rhs_inside, psi, b, bp, G, h, box);
+  kernels::add_elastic_force(rhs_inside, psi, b, bp, shear, G, h, box);
   kernels::momentum_predict(rhs_inside, u, mu0, h, terms_for(star_inside), true, box);
   // after: the plain predictor, then the force on rhs^k and u*
   const kernels::Velocity star_after = copy_of(rhs_old), rhs_after = copy_of(rhs_old);
   const kernels::PredictorTerms terms_after = terms_for(star_after);
   kernels::momentum_predict(rhs_after, u, mu0, h, terms_after, false, box);
-  kernels::add_elastic_force_to_predictor(rhs_after, star_after, terms_after, psi, b, bp, G, h, box);
+  kernels::add_elastic_force_to_predictor(rhs_after, star_after, terms_after, psi, b, bp, shear, G, h, box);
   Kokkos::fence();
   EXPECT_EQ(max_relative_difference(rhs_after, rhs_inside, box), 0.0);
   EXPECT_LE(max_relative_difference(star_after, star_inside, box), 1e-14);

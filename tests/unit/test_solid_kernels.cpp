@@ -31,6 +31,7 @@ struct Mesh {
       : n{nx, ny, nz}, h{lx / nx, ly / ny, lz / nz}, e{nx + 2 * kGhost, ny + 2 * kGhost, nz + 2 * kGhost} {}
   Field3 field(const char* name) const { return Field3(std::string(name), e[0], e[1], e[2]); }
   Velocity velocity() const { return Velocity{{field("u"), field("v"), field("w")}}; }
+  kernels::Scratch3 scratch() const { return kernels::Scratch3{{field("s_xy"), field("s_xz"), field("s_yz")}}; }
   Tensor6 tensor(const char* name) const {
     Tensor6 t;
     for (int s = 0; s < kernels::kTensorComponents; ++s) t.c[s] = field(name);
@@ -547,7 +548,7 @@ double elastic_force_error(int N) {
     });
   }
   Velocity rhs = m.velocity();
-  kernels::add_elastic_force(rhs, psi, b, b, G, m.h, m.interior());
+  kernels::add_elastic_force(rhs, psi, b, b, m.scratch(), G, m.h, m.interior());
   double err = 0.0;
   for (int D = 0; D < 3; ++D) {
     const Field3 r = rhs.c[D];
@@ -577,7 +578,7 @@ TEST(ElasticForce, NoForceWithoutDeformation) {
   set_identity(b);
   set_identity(bp);
   Velocity rhs = m.velocity();
-  kernels::add_elastic_force(rhs, psi, b, bp, 3.0, m.h, m.interior());
+  kernels::add_elastic_force(rhs, psi, b, bp, m.scratch(), 3.0, m.h, m.interior());
   double err = 0.0;
   for (int d = 0; d < 3; ++d) err = std::fmax(err, max_abs_minus(rhs.c[d], 0.0, m.interior()));
   EXPECT_EQ(err, 0.0);
@@ -585,7 +586,7 @@ TEST(ElasticForce, NoForceWithoutDeformation) {
     Kokkos::deep_copy(b.c[s].data, (s < 3 ? 1.0 : 0.0) + 0.37);
     Kokkos::deep_copy(bp.c[s].data, (s < 3 ? 1.0 : 0.0) - 0.37);
   }
-  kernels::add_elastic_force(rhs, psi, b, bp, 3.0, m.h, m.interior());
+  kernels::add_elastic_force(rhs, psi, b, bp, m.scratch(), 3.0, m.h, m.interior());
   for (int d = 0; d < 3; ++d) err = std::fmax(err, max_abs_minus(rhs.c[d], 0.0, m.interior()));
   EXPECT_LT(err, 1e-12);
 }
