@@ -9,8 +9,6 @@
 
 namespace eulerfsi {
 
-namespace {
-
 // FFTW-MPI must be initialised once per process, after MPI_Init; cleanup is left to exit.
 void ensure_fftw_mpi_init() {
   // a function-local static runs exactly once, even if two threads construct solvers
@@ -22,6 +20,8 @@ void ensure_fftw_mpi_init() {
   }();
   (void)done;
 }
+
+namespace {
 
 // The transform sizes: one unknown less along an OddFace direction (its last face is the wall).
 int unknowns(int cells, R2rKind kind) { return kind == R2rKind::OddFace ? cells - 1 : cells; }

@@ -27,6 +27,10 @@ namespace eulerfsi {
 
 enum class R2rKind { Periodic, EvenHalf, OddHalf, OddFace };
 
+// FFTW's threads and FFTW-MPI set up, once per process: before any plan, and before wisdom naming
+// FFTW-MPI's algorithms is imported (FFTW refuses names it does not know yet).
+void ensure_fftw_mpi_init();
+
 class FftwMpiR2r {
  public:
   // Estimate plans deterministically and at once; Measure may pick a faster algorithm but can

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "poisson/fft_wisdom.hpp"
+#include "poisson/fftw_mpi_r2r.hpp"
 
 namespace eulerfsi {
 
@@ -128,6 +129,7 @@ bool load_fft_wisdom(const std::string& path, MPI_Comm comm, std::string* why) {
                 std::to_string(size);
   }
   problem = broadcast(problem, comm);
+  ensure_fftw_mpi_init();
   const std::string mine = problem.empty() ? scatter_from_root(texts, comm) : "";
   // the stored wisdom and nothing else: what this process planned before must not mix in
   fftw_forget_wisdom();
