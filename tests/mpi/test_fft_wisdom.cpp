@@ -98,8 +98,9 @@ TEST_P(FftWisdom, StoredWisdomAlonePlansEveryTransform) {
   EXPECT_NO_THROW(build_solvers(g, FftPlanning::WisdomOnly));
 }
 
-// Ranks may time the same local transform differently and choose different algorithms (seen here on
-// 2 ranks: 2 of ~90 entries): each must get back its own choices, not one rank's for all.
+// Ranks may time the same local transform differently and choose different algorithms: each must
+// get back its own choices, not one rank's for all (with fftw_mpi_gather_wisdom + broadcast instead,
+// rank 1 lost 1-4 of its ~70 entries to rank 0's choice in each of 6 tries on 2 ranks here).
 TEST_P(FftWisdom, EachRankGetsBackExactlyItsOwnChoices) {
   const Grid g = small_grid(GetParam());
   const std::string path = eulerfsi::fft_wisdom_path(dir_ + "/checkpoint.h5");
