@@ -36,6 +36,9 @@
 #            compare sittings, not codes); the table gives the median and the fastest round
 #   BUILD2   a second eulerfsi build (e.g. one configured with -DEULERFSI_ENABLE_NATIVE=ON), timed
 #            in the same rounds and named by its folder
+#   FFT_PLANNING=measure  eulerfsi's pressure transforms planned with FFTW_MEASURE (passed to every
+#            eulerfsi run as --set solver.fft_planning=measure; the planning, well under a second, is
+#            before the timed steps); unset: the case default, estimate. Named in the table's heading
 # Smoke test: NSTEP=6 WARM=2 bench/support/cans_compare.sh   (about a minute)
 # A full run (NSTEP=100) takes about 3 minutes on 2 idle cores (about 7 beside two busy
 # background runs). Run it on an otherwise idle machine: the table prints the load average
@@ -54,6 +57,9 @@ eulerfsi_runs=${EULERFSI_RUNS:-"1x1 1x2 2x1"}
 pipe_bench=${PIPE_BENCH:-1}
 rounds=${ROUNDS:-3}
 build2=${BUILD2:-}
+fft_planning=${FFT_PLANNING:-}
+planning_args=()
+[ -z "$fft_planning" ] || planning_args=(--set "solver.fft_planning=$fft_planning")
 template=$here/cans_duct.nml.in
 
 die() { echo "cans_compare: $*" >&2; exit 1; }
@@ -134,7 +140,8 @@ run_eulerfsi() {  # build ranks_x_threads -> seconds per step
   local b=$1 rt=$2 r=${2%x*} t=${2#*x} log s
   log=$work/eulerfsi_$(basename "$1")_$2.log
   rm -rf "$work/eulerfsi_$rt"
-  OMP_NUM_THREADS=$t "${mpi[@]}" -np "$r" "$b/eulerfsi" run "$work/duct.toml" --out "$work/eulerfsi_$rt" >"$log" 2>&1 ||
+  OMP_NUM_THREADS=$t "${mpi[@]}" -np "$r" "$b/eulerfsi" run "$work/duct.toml" --out "$work/eulerfsi_$rt" \
+    "${planning_args[@]}" >"$log" 2>&1 ||
     { tail -20 "$log" >&2; die "eulerfsi ($b) failed on $rt"; }
   # progress lines: "step N  t ...  wall X.Xs  eta ...": wall at step WARM and at step NSTEP
   s=$(awk -v w="$warm" -v n="$nstep" '$1 == "step" { for (i = 2; i < NF; i++) if ($i == "wall") { x = $(i + 1); sub(/s$/, "", x) }
@@ -205,7 +212,8 @@ else cans_ver=unknown; fi
 echo
 echo "Square duct ${nx}x${ny}x${nz} ($cells cells), Re 100, dt $dt, $((nstep - warm)) timed steps after $warm;" \
      "$(lscpu | sed -n 's/^Model name: *//p' | head -1), $(nproc) cores; load $load_before -> $load_after;" \
-     "eulerfsi $(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown), CaNS $cans_ver"
+     "eulerfsi $(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)" \
+     "(FFT plans: ${fft_planning:-estimate}), CaNS $cans_ver"
 echo
 echo "| code | ranks x threads | ns / cell / step (median of $rounds) | fastest round | s / step (median) | how |"
 echo "|---|---|---|---|---|---|"

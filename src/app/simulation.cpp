@@ -17,6 +17,7 @@
 #include "io/profiles.hpp"
 #include "kernels/flow_reductions.hpp"
 #include "kernels/interpolation.hpp"
+#include "poisson/fft_wisdom.hpp"
 #include "solid/migration_summary.hpp"
 #include "solid/particle_diagnostics.hpp"
 #include "solid/shape_section.hpp"
@@ -52,7 +53,8 @@ constexpr double kCollapse = 1e-6;
 class Simulation {
  public:
   Simulation(const CaseConfig& cfg, const Comm& comm, const RunOptions& opt)
-      : cfg_(cfg), comm_(comm), opt_(opt), grid_(make_grid(cfg, comm)), flow_(cfg, grid_, comm),
+      : cfg_(cfg), comm_(comm), opt_(opt), grid_(make_grid(cfg, comm)), restored_fft_wisdom_(restore_fft_wisdom()),
+        flow_(cfg, grid_, comm),
         solids_(cfg, grid_, flow_.boundaries(), comm), tracker_(cfg, grid_, comm),
         fields_(grid_, comm.comm, cfg.output.dir) {}
 
@@ -105,6 +107,28 @@ class Simulation {
     flow_.set_frame_velocity(u, t_);
   }
   std::string checkpoint_path() const { return dir() + "/checkpoint.h5"; }
+  std::string restart_path() const { return opt_.restart_file.empty() ? checkpoint_path() : opt_.restart_file; }
+  bool measures_ffts() const { return cfg_.solver.fft_planning == FftPlanning::Measure; }
+
+  // The wisdom beside the restart's checkpoint. checkpoint.h5.prev has none of its own: the wisdom
+  // beside checkpoint.h5 holds its plans (a run plans once, and a restart reuses the stored plans).
+  std::string stored_wisdom_path() const {
+    const std::string checkpoint = restart_path(), prev = ".prev", own = fft_wisdom_path(checkpoint);
+    const bool is_prev = checkpoint.size() > prev.size() &&
+                         checkpoint.compare(checkpoint.size() - prev.size(), prev.size(), prev) == 0;
+    return is_prev && !fs::exists(own) ? fft_wisdom_path(checkpoint.substr(0, checkpoint.size() - prev.size())) : own;
+  }
+
+  // Before the solvers are built: FFTW_MEASURE then plans what the interrupted run planned.
+  bool restore_fft_wisdom() const {
+    if (!opt_.restart || !measures_ffts()) return false;
+    std::string why;
+    const bool restored = load_fft_wisdom(stored_wisdom_path(), comm_.comm, &why);
+    if (!restored && comm_.root())
+      std::fprintf(stderr, "warning: %s: solver.fft_planning = \"measure\" plans afresh, so the restart may differ in "
+                   "the last bits from an uninterrupted run\n", why.c_str());
+    return restored;
+  }
 
   bool finished() const {
     if (cfg_.time.max_steps > 0 && step_ >= cfg_.time.max_steps) return true;
@@ -178,11 +202,13 @@ class Simulation {
     std::vector<CheckpointSource> fields;
     for (const auto& [name, f] : flow_fields()) fields.push_back({name, f, 0.0});
     for (const auto& f : solids_.checkpoint_sources()) fields.push_back(f);
+    // the wisdom first: a checkpoint is never without the plans that continue it
+    if (measures_ffts()) save_fft_wisdom(fft_wisdom_path(checkpoint_path()), comm_.comm);
     write_checkpoint(checkpoint_path(), grid_, comm_.comm, meta, fields);
   }
 
   void restore() {
-    const std::string path = opt_.restart_file.empty() ? checkpoint_path() : opt_.restart_file;
+    const std::string path = restart_path();
     const CheckpointMeta meta = read_checkpoint(path, grid_, comm_.comm, state_fields());
     // checkpoints written before flow.pipe_wall existed ran the paper's staircase wall
     std::vector<std::string> written_before_key;
@@ -381,6 +407,7 @@ class Simulation {
   Comm comm_;
   RunOptions opt_;
   Grid grid_;
+  bool restored_fft_wisdom_;  // declared before flow_: set before the solvers plan their transforms
   FlowSolver flow_;
   SolidPhase solids_;
   ParticleTracker tracker_;

@@ -32,6 +32,7 @@ const std::vector<Section>& schema() {
       {"flow", {"Re", "bulk_velocity", "wall_velocity", "wall_frequency", "initial", "penalization_eta", "pipe_wall",
                 "frame_velocity"}},
       {"time", {"cfl", "dt", "t_end", "max_steps", "implicit_viscosity"}},
+      {"solver", {"fft_planning"}},
       {"output", {"dir", "every", "fields_every", "profiles_every", "checkpoint_every", "shape_times"}},
       {"solid", {"shape", "diameter", "center", "thickness", "We", "viscosity_ratio", "initial_velocity", "sharpening", "model", "map_margin", "b_extension"}},
   };
@@ -61,6 +62,10 @@ const std::vector<std::pair<const char*, InitialSolidVelocity>> kSolidVelocities
 
 const std::vector<std::pair<const char*, SolidModelKind>> kSolidModels{
     {"paper", SolidModelKind::Paper}, {"reference-map", SolidModelKind::ReferenceMap}};
+
+// only what a case file may ask for: WisdomOnly is for checking stored wisdom
+const std::vector<std::pair<const char*, FftPlanning>> kFftPlannings{{"estimate", FftPlanning::Estimate},
+                                                                    {"measure", FftPlanning::Measure}};
 
 template <class E>
 const char* spelling(const std::vector<std::pair<const char*, E>>& table, E e) {
@@ -528,6 +533,11 @@ void read_time(const Reader& r, const toml::table& root, TimeConfig& c) {
 #endif
 }
 
+void read_solver(const Reader& r, const toml::table& root, SolverConfig& s) {
+  const toml::table* t = r.section(root, "solver");
+  r.get(t, "solver", "fft_planning", s.fft_planning, kFftPlannings);
+}
+
 void read_output(const Reader& r, const toml::table& root, OutputConfig& o) {
   const toml::table* t = r.section(root, "output");
   if (const toml::node* n = t ? t->get("dir") : nullptr) {
@@ -679,6 +689,7 @@ CaseConfig validate(const toml::table& root, const Reader& r) {
   read_domain(r, root, cfg.domain);
   read_flow(r, root, cfg.domain, cfg.flow);
   read_time(r, root, cfg.time);
+  read_solver(r, root, cfg.solver);
   read_output(r, root, cfg.output);
   read_solids(r, root, cfg.domain, cfg.solids);
   if (cfg.flow.frame_follows_particle && cfg.solids.empty())
@@ -695,6 +706,7 @@ const char* to_string(PipeWall w) { return spelling(kPipeWalls, w); }
 const char* to_string(SolidShape s) { return spelling(kShapes, s); }
 const char* to_string(InitialSolidVelocity v) { return spelling(kSolidVelocities, v); }
 const char* to_string(SolidModelKind m) { return spelling(kSolidModels, m); }
+const char* to_string(FftPlanning p) { return spelling(kFftPlannings, p); }
 
 CaseConfig parse_case_string(const std::string& toml_text, const std::vector<std::string>& overrides,
                              const std::string& source_name) {
@@ -754,6 +766,8 @@ std::string to_toml(const CaseConfig& c) {
      << "t_end = " << fmt_double(c.time.t_end) << "\n"
      << "max_steps = " << c.time.max_steps << "\n"
      << "implicit_viscosity = " << (c.time.implicit_viscosity ? "true" : "false") << "\n";
+  os << "\n[solver]\n"
+     << "fft_planning = " << toml_str(to_string(c.solver.fft_planning)) << "\n";
   os << "\n[output]\n"
      << "dir = " << toml_str(c.output.dir) << "\n"
      << "every = " << c.output.every << "\n"

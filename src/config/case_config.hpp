@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "poisson/fft_planning.hpp"
+
 namespace eulerfsi {
 
 // One clear message naming the key and what is allowed; the CLI prints it and exits non-zero.
@@ -51,6 +53,12 @@ struct TimeConfig {
   bool implicit_viscosity = false;
 };
 
+// How the run computes, not what: may change on restart.
+struct SolverConfig {
+  // estimate or measure (WisdomOnly is not a case-file value)
+  FftPlanning fft_planning = FftPlanning::Estimate;
+};
+
 struct OutputConfig {
   std::string dir = "runs/case";
   long every = 10;
@@ -85,6 +93,7 @@ struct CaseConfig {
   DomainConfig domain;
   FlowConfig flow;
   TimeConfig time;
+  SolverConfig solver;
   OutputConfig output;
   std::vector<SolidConfig> solids;
   std::string source;  // the file it came from
@@ -114,5 +123,6 @@ const char* to_string(InitialFlow f);
 const char* to_string(SolidShape s);
 const char* to_string(InitialSolidVelocity v);
 const char* to_string(SolidModelKind m);
+const char* to_string(FftPlanning p);
 
 }  // namespace eulerfsi

@@ -9,8 +9,6 @@
 
 namespace eulerfsi {
 
-namespace {
-
 // FFTW-MPI must be initialised once per process, after MPI_Init; cleanup is left to exit.
 void ensure_fftw_mpi_init() {
   // a function-local static runs exactly once, even if two threads construct solvers
@@ -22,6 +20,8 @@ void ensure_fftw_mpi_init() {
   }();
   (void)done;
 }
+
+namespace {
 
 // The transform sizes: one unknown less along an OddFace direction (its last face is the wall).
 int unknowns(int cells, R2rKind kind) { return kind == R2rKind::OddFace ? cells - 1 : cells; }
@@ -63,6 +63,16 @@ double logical_size(int n, R2rKind kind) {
     case R2rKind::OddFace: return 2.0 * (n + 1);
   }
   return n;
+}
+
+// WisdomOnly asks for Measure's plan and takes it only from wisdom (null plans where there is none).
+unsigned planning_flags(FftPlanning planning) {
+  switch (planning) {
+    case FftPlanning::Estimate: return FFTW_ESTIMATE;
+    case FftPlanning::Measure: return FFTW_MEASURE;
+    case FftPlanning::WisdomOnly: return FFTW_MEASURE | FFTW_WISDOM_ONLY;
+  }
+  return FFTW_ESTIMATE;
 }
 
 }  // namespace
@@ -124,7 +134,7 @@ FftwMpiR2r::FftwMpiR2r(const Grid& grid, MPI_Comm comm, const R2rKind kind[3], P
   const int transformed = tridiagonal_z_ ? 2 : 3;
   for (int d = 0; d < 3; ++d) fftw_kinds(kind[d], fwd[d], bwd[d]);
   for (int d = 0; d < transformed; ++d) scale_ /= logical_size(n_[d], kind[d]);
-  const unsigned effort = planning == Planning::Measure ? FFTW_MEASURE : FFTW_ESTIMATE;
+  const unsigned effort = planning_flags(planning);
 #ifdef EULERFSI_FFTW_THREADS
   fftw_plan_with_nthreads(Kokkos::DefaultHostExecutionSpace().concurrency());
 #endif
@@ -146,7 +156,8 @@ FftwMpiR2r::FftwMpiR2r(const Grid& grid, MPI_Comm comm, const R2rKind kind[3], P
     if (backward_) fftw_destroy_plan(backward_);
     if (owns_buffer_) fftw_free(buf_);
     throw std::runtime_error(std::string(who) + ": FFTW-MPI could not plan the " + std::to_string(n_[0]) + "x" +
-                             std::to_string(n_[1]) + "x" + std::to_string(n_[2]) + " r2r transform");
+                             std::to_string(n_[1]) + "x" + std::to_string(n_[2]) + " r2r transform" +
+                             (planning == Planning::WisdomOnly ? " from the imported wisdom alone" : ""));
   }
 
   physical_ = HostBuffer3(buf_, nx_local_, n_[1], n_[2]);

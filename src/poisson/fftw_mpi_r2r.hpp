@@ -21,16 +21,21 @@
 
 #include "core/types.hpp"
 #include "grid/grid.hpp"
+#include "poisson/fft_planning.hpp"
 
 namespace eulerfsi {
 
 enum class R2rKind { Periodic, EvenHalf, OddHalf, OddFace };
 
+// FFTW's threads and FFTW-MPI set up, once per process: before any plan, and before wisdom naming
+// FFTW-MPI's algorithms is imported (FFTW refuses names it does not know yet).
+void ensure_fftw_mpi_init();
+
 class FftwMpiR2r {
  public:
   // Estimate plans deterministically and at once; Measure may pick a faster algorithm but can
-  // differ between runs and rank counts in the last bits.
-  enum class Planning { Estimate, Measure };
+  // differ between runs and rank counts in the last bits (poisson/fft_planning.hpp).
+  using Planning = FftPlanning;
   // How z is solved: a tridiagonal solve per line where z is a wall direction, or always by transform.
   enum class AlongZ { Tridiagonal, Transform };
 

@@ -19,7 +19,7 @@ namespace {
 // The three run one after the other and share one buffer.
 class FftwMpiHelmholtz final : public HelmholtzSolver {
  public:
-  FftwMpiHelmholtz(const Grid& grid, MPI_Comm comm) {
+  FftwMpiHelmholtz(const Grid& grid, MPI_Comm comm, FftPlanning planning) {
     R2rKind kind[3][3];
     size_t size = 0;
     for (int c = 0; c < 3; ++c) {
@@ -30,8 +30,7 @@ class FftwMpiHelmholtz final : public HelmholtzSolver {
     buffer_ = fftw_alloc_real(size);
     if (!buffer_) throw std::runtime_error("FftwMpiHelmholtz: fftw_alloc_real failed");
     for (int c = 0; c < 3; ++c)
-      transform_[c] = std::make_unique<FftwMpiR2r>(grid, comm, kind[c], FftwMpiR2r::Planning::Estimate,
-                                                   "FftwMpiHelmholtz", buffer_);
+      transform_[c] = std::make_unique<FftwMpiR2r>(grid, comm, kind[c], planning, "FftwMpiHelmholtz", buffer_);
   }
   ~FftwMpiHelmholtz() override {
     for (auto& t : transform_) t.reset();  // the plans before the buffer they run on
@@ -48,11 +47,11 @@ class FftwMpiHelmholtz final : public HelmholtzSolver {
 
 }  // namespace
 
-std::unique_ptr<HelmholtzSolver> make_helmholtz_solver(const Grid& grid, MPI_Comm comm) {
-  return std::make_unique<FftwMpiHelmholtz>(grid, comm);
+std::unique_ptr<HelmholtzSolver> make_helmholtz_solver(const Grid& grid, MPI_Comm comm, FftPlanning planning) {
+  return std::make_unique<FftwMpiHelmholtz>(grid, comm, planning);
 }
 #else
-std::unique_ptr<HelmholtzSolver> make_helmholtz_solver(const Grid&, MPI_Comm) {
+std::unique_ptr<HelmholtzSolver> make_helmholtz_solver(const Grid&, MPI_Comm, FftPlanning) {
   throw std::runtime_error(
       "time.implicit_viscosity = true needs the FFTW-MPI transforms, and this build has no MPI "
       "(configure with -DEULERFSI_ENABLE_MPI=ON)");

@@ -10,6 +10,7 @@
 #include "core/types.hpp"
 #include "grid/grid.hpp"
 #include "parallel/mpi.hpp"
+#include "poisson/fft_planning.hpp"
 
 namespace eulerfsi {
 
@@ -22,6 +23,7 @@ class HelmholtzSolver {
 };
 
 // FFTW-MPI on x-slabs; throws std::runtime_error in a build without MPI.
-std::unique_ptr<HelmholtzSolver> make_helmholtz_solver(const Grid& grid, MPI_Comm comm);
+std::unique_ptr<HelmholtzSolver> make_helmholtz_solver(const Grid& grid, MPI_Comm comm,
+                                                       FftPlanning planning = FftPlanning::Estimate);
 
 }  // namespace eulerfsi

@@ -26,14 +26,15 @@ constexpr bool kPreferFftDct = false;
 #endif
 }  // namespace
 
-std::unique_ptr<PoissonSolver> make_poisson_solver(const Grid& grid, MPI_Comm comm) {
+std::unique_ptr<PoissonSolver> make_poisson_solver(const Grid& grid, MPI_Comm comm, FftPlanning planning) {
 #ifdef EULERFSI_HAVE_MPI
   int size = 1;
   MPI_Comm_size(comm, &size);
   // FFT_DCT works on one rank only: a distributed run takes FFTW-MPI's transposes
-  if (!kPreferFftDct || size > 1) return std::make_unique<FftwMpiPoisson>(grid, comm);
+  if (!kPreferFftDct || size > 1) return std::make_unique<FftwMpiPoisson>(grid, comm, planning);
 #else
   (void)comm;
+  (void)planning;
   static_assert(kPreferFftDct, "a build without MPI has only the FFT_DCT Poisson solver");
 #endif
   return std::make_unique<FftDctPoisson>(grid);

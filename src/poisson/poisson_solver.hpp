@@ -9,6 +9,7 @@
 #include "core/types.hpp"
 #include "grid/grid.hpp"
 #include "kernels/projection.hpp"
+#include "poisson/fft_planning.hpp"
 
 namespace eulerfsi {
 
@@ -33,8 +34,10 @@ class PoissonSolver {
   virtual const char* name() const = 0;
 };
 
-// The best solver available for this build (today: FFTW-MPI on x-slabs).
-std::unique_ptr<PoissonSolver> make_poisson_solver(const Grid& grid, MPI_Comm comm);
+// The best solver available for this build (today: FFTW-MPI on x-slabs). `planning` applies to
+// FFTW-MPI; FFT_DCT's engines plan as they always do (FFTW: estimate) and ignore it.
+std::unique_ptr<PoissonSolver> make_poisson_solver(const Grid& grid, MPI_Comm comm,
+                                                   FftPlanning planning = FftPlanning::Estimate);
 
 // One line for `eulerfsi info`: the solver this build picks and its FFT library.
 std::string poisson_backend_info();

@@ -24,6 +24,16 @@ foreach(np_case "1;particle_pipe" "2;particle_pipe_frame" "2;particle_pipe_refma
                    ${CMAKE_BINARY_DIR}/regression/restart_np${np}_${c} ${np})
   set_tests_properties(restart_bit_for_bit_np${np}_${c} PROPERTIES ENVIRONMENT "${EULERFSI_TEST_ENV}" PROCESSORS ${np})
 endforeach()
+# the same with FFTW_MEASURE plans, whose choices may differ between processes: the restart reuses
+# the wisdom stored beside the checkpoint (pressure on 1 rank; pressure and Helmholtz on 2)
+foreach(np_case "1;particle_pipe" "2;particle_pipe_implicit")
+  list(GET np_case 0 np)
+  list(GET np_case 1 c)
+  add_test(NAME restart_bit_for_bit_measure_np${np}_${c}
+           COMMAND bash ${REG}/restart.sh $<TARGET_FILE:eulerfsi> ${REG}/cases/${c}.toml
+                   ${CMAKE_BINARY_DIR}/regression/restart_measure_np${np}_${c} ${np} --set solver.fft_planning=measure)
+  set_tests_properties(restart_bit_for_bit_measure_np${np}_${c} PROPERTIES ENVIRONMENT "${EULERFSI_TEST_ENV}" PROCESSORS ${np})
+endforeach()
 # every bad input refused with one clear message, a non-zero exit and nothing overwritten
 add_test(NAME bad_input_refused
          COMMAND bash ${REG}/bad_input.sh $<TARGET_FILE:eulerfsi> ${CMAKE_CURRENT_SOURCE_DIR}

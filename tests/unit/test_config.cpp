@@ -50,6 +50,7 @@ void expect_same(const CaseConfig& a, const CaseConfig& b) {
   EXPECT_EQ(a.time.t_end, b.time.t_end);
   EXPECT_EQ(a.time.max_steps, b.time.max_steps);
   EXPECT_EQ(a.time.implicit_viscosity, b.time.implicit_viscosity);
+  EXPECT_EQ(a.solver.fft_planning, b.solver.fft_planning);
   EXPECT_EQ(a.output.dir, b.output.dir);
   EXPECT_EQ(a.output.every, b.output.every);
   EXPECT_EQ(a.output.fields_every, b.output.fields_every);
@@ -446,6 +447,20 @@ TEST(ConfigErrors, MapMarginBelongsToTheReferenceMap) {
                {"solid[0].b_extension = false", "\"paper\" only"});
   expect_error("[[solid]]\nb_extension = 1\n", {"solid[0].b_extension"});
   expect_error("[[solid]]\nmodel = \"reference-map\"\nmap_margin = -0.1\n", {"solid[0].map_margin = -0.1", "[0, 1]"});
+}
+
+// solver.fft_planning: estimate by default, measure on request, written back by the round trip;
+// anything else (WisdomOnly's spelling included) refused naming the key and the allowed values.
+TEST(Config, FftPlanning) {
+  EXPECT_EQ(parse_case_string("").solver.fft_planning, FftPlanning::Estimate);
+  const CaseConfig c = parse_case_string("[solver]\nfft_planning = \"measure\"\n");
+  EXPECT_EQ(c.solver.fft_planning, FftPlanning::Measure);
+  expect_same(parse_case_string(to_toml(c)), c);
+  expect_error("[solver]\nfft_planning = \"patient\"\n",
+               {"solver.fft_planning = \"patient\"", "one of \"estimate\", \"measure\""});
+  expect_error("[solver]\nfft_planning = \"wisdom-only\"\n", {"solver.fft_planning"});
+  expect_error("[solver]\nfft_planning = true\n", {"solver.fft_planning", "expected a string"});
+  expect_error("[time]\nfft_planning = \"measure\"\n", {"did you mean solver.fft_planning?"});
 }
 
 TEST(ConfigErrors, MissingFile) {
