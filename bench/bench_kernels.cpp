@@ -233,8 +233,9 @@ void BM_TensorTransportRhs(benchmark::State& state) {
 }
 
 // add_elastic_force (one body, 3 components). Minimal: read psi, 6 B, 6 B_prev, 3 rhs; write
-// 3 rhs = 19 doubles. (As written: the shear stresses once, 7 read and 3 written, then three face
-// sweeps, each reading psi, B_DD, B_prev_DD, two shear stresses and rhs and writing rhs: 31 doubles.)
+// 3 rhs = 19 doubles. (As written: the shear stresses once, 7 read and 3 written, then one pass over
+// the three components' faces reading psi, 3 B_DD, 3 B_prev_DD, the 3 shear stresses and 3 rhs and
+// writing 3 rhs: 26 doubles.)
 void BM_AddElasticForce(benchmark::State& state) {
   PipeCase c(state, true);
   const auto& body = c.solids.bodies()[0];

@@ -16,36 +16,72 @@
 namespace eulerfsi::kernels {
 
 // S_AB at cell (i,j,k) with the Crank-Nicolson average of B (explicit: B is advanced first).
-template <int A, int B>
-KOKKOS_FORCEINLINE_FUNCTION double elastic_stress(const WindowField& psi, const Tensor6& b, const Tensor6& bp, double G,
-                                                  int i, int j, int k) {
+// P: a window field or the row kernels' RowCells, T: a Tensor6 or RowTensor.
+template <int A, int B, class P, class T>
+KOKKOS_FORCEINLINE_FUNCTION double elastic_stress(const P& psi, const T& b, const T& bp, double G, int i, int j, int k) {
   constexpr int s = A == B ? A : (A + B == 1 ? XY : (A + B == 2 ? XZ : YZ));
   return psi(i, j, k) * G * (0.5 * (b.c[s](i, j, k) + bp.c[s](i, j, k)) - (A == B ? 1.0 : 0.0));
 }
+
+// One row's 3 x 3 neighbourhood of rows (i0 + di, j0 + dj; di, dj in -1..1) of a window field as raw
+// pointers from k0 on: the row kernels index it without the window's offsets on every access, so
+// the k loop vectorises. The stencil functions take it in place of the field (the same values).
+struct RowCells {
+  const double* row[3][3] = {};
+  int i0 = 0, j0 = 0, k0 = 0;
+  RowCells() = default;
+  KOKKOS_INLINE_FUNCTION RowCells(const WindowField& f, int i, int j, int k) : i0(i), j0(j), k0(k) {
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < 3; ++c) row[a][c] = &f(i + a - 1, j + c - 1, k);
+  }
+  KOKKOS_FORCEINLINE_FUNCTION double operator()(int i, int j, int k) const { return row[i - i0 + 1][j - j0 + 1][k - k0]; }
+};
+struct RowTensor {
+  RowCells c[kTensorComponents];
+};
+
+// S_xy, S_xz, S_yz at the cell centres of one row (k0..k1) into shear.c[0..2].
+struct ShearStressRow {
+  Scratch3 shear;
+  WindowField psi;
+  Tensor6 b, bp;
+  double G;
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k) const {  // GPUs: per cell
+    shear.c[0](i, j, k) = elastic_stress<0, 1>(psi, b, bp, G, i, j, k);
+    shear.c[1](i, j, k) = elastic_stress<0, 2>(psi, b, bp, G, i, j, k);
+    shear.c[2](i, j, k) = elastic_stress<1, 2>(psi, b, bp, G, i, j, k);
+  }
+  void row(int i, int j, int k0, int k1) const {
+    const double* ps = &psi(i, j, k0);
+    const double* bs[3] = {&b.c[XY](i, j, k0), &b.c[XZ](i, j, k0), &b.c[YZ](i, j, k0)};
+    const double* bps[3] = {&bp.c[XY](i, j, k0), &bp.c[XZ](i, j, k0), &bp.c[YZ](i, j, k0)};
+    for (int c = 0; c < 3; ++c) {
+      double* out = &shear.c[c](i, j, k0);
+      EULERFSI_INDEPENDENT_LOOP
+      for (int n = 0; n < k1 - k0; ++n) out[n] = ps[n] * G * (0.5 * (bs[c][n] + bps[c][n]) - 0.0);
+    }
+  }
+};
 
 // The shear stresses S_xy, S_xz, S_yz at the cell centres of `box`, into shear.c[0..2]: each face
 // reads eight of them (two edges of four cells) per E, so they are computed once per cell.
 inline void shear_stress(const Scratch3& shear, const WindowField& psi, const Tensor6& b, const Tensor6& bp, double G,
                          const Box& box) {
-  const Scratch3 s = shear;
-  const Tensor6 bb = b, bbp = bp;
-  for_each_cell("eulerfsi::solid::shear_stress", box, KOKKOS_LAMBDA(int i, int j, int k) {
-    s.c[0](i, j, k) = elastic_stress<0, 1>(psi, bb, bbp, G, i, j, k);
-    s.c[1](i, j, k) = elastic_stress<0, 2>(psi, bb, bbp, G, i, j, k);
-    s.c[2](i, j, k) = elastic_stress<1, 2>(psi, bb, bbp, G, i, j, k);
-  });
+  for_each_row("eulerfsi::solid::shear_stress", box, ShearStressRow{shear, psi, b, bp, G});
 }
 
 // Where the face kernels take S_DE (D != E) from: shear_stress()'s scratch in the step, B itself in
 // the diagnostics (which run between steps, when the scratch holds nothing).
-struct ShearFromScratch {
-  Scratch3 s;
+template <class S>
+struct ShearFrom {
+  S s[3];  // S_xy, S_xz, S_yz: window fields, or RowCells in the row kernels
   template <int D, int E>
   KOKKOS_FORCEINLINE_FUNCTION double at(int i, int j, int k) const {
     static_assert(D != E, "S_DD is not stored");
-    return s.c[D + E - 1](i, j, k);  // xy: 0, xz: 1, yz: 2
+    return s[D + E - 1](i, j, k);  // xy: 0, xz: 1, yz: 2
   }
 };
+using ShearFromScratch = ShearFrom<WindowField>;
 struct ShearFromB {
   WindowField psi;
   Tensor6 b, bp;
@@ -66,10 +102,9 @@ KOKKOS_FORCEINLINE_FUNCTION double elastic_stress_edge(const Shear& s, int i, in
 }
 
 // (div S)_D at the D-face between cells i and i + e_D; S_DE (E != D) from `shear`.
-template <int D, class Shear>
-KOKKOS_FORCEINLINE_FUNCTION double elastic_force_at_face(const WindowField& psi, const Tensor6& b, const Tensor6& bp,
-                                                         const Shear& shear, double G, const double inv_h[3], int i,
-                                                         int j, int k) {
+template <int D, class P, class T, class Shear>
+KOKKOS_FORCEINLINE_FUNCTION double elastic_force_at_face(const P& psi, const T& b, const T& bp, const Shear& shear,
+                                                         double G, const double inv_h[3], int i, int j, int k) {
   constexpr int E1 = (D + 1) % 3, E2 = (D + 2) % 3;
   const double fn = (elastic_stress<D, D>(psi, b, bp, G, i + Unit<D>::i, j + Unit<D>::j, k + Unit<D>::k) -
                      elastic_stress<D, D>(psi, b, bp, G, i, j, k)) *
@@ -85,8 +120,8 @@ KOKKOS_FORCEINLINE_FUNCTION double elastic_force_at_face(const WindowField& psi,
 
 // Largest psi over the ten cells the D-face stencil reads: the two cells of the face and their
 // neighbours across each edge. Zero means a zero force (most faces, far from the body).
-template <int D>
-KOKKOS_FORCEINLINE_FUNCTION double face_stencil_max(const WindowField& psi, int i, int j, int k) {
+template <int D, class P>
+KOKKOS_FORCEINLINE_FUNCTION double face_stencil_max(const P& psi, int i, int j, int k) {
   constexpr int E1 = (D + 1) % 3, E2 = (D + 2) % 3;
   double m = 0.0;
   for (int a = 0; a <= 1; ++a) {
@@ -99,17 +134,74 @@ KOKKOS_FORCEINLINE_FUNCTION double face_stencil_max(const WindowField& psi, int 
   return m;
 }
 
+// The row kernels' view of a body's fields around row (i, j): psi, B_DD and B_prev_DD, the shear
+// stresses (RowCells; the other tensor components are not read by the D-face stencil).
 template <int D>
-struct ElasticForce {
-  Field3 rhs;
+struct FaceRow {
+  RowCells psi;
+  RowTensor b, bp;
+  ShearFrom<RowCells> shear;
+  KOKKOS_INLINE_FUNCTION FaceRow(const WindowField& p, const Tensor6& bt, const Tensor6& bpt, const ShearFromScratch& s,
+                                 int i, int j, int k0)
+      : psi(p, i, j, k0) {
+    b.c[D] = RowCells(bt.c[D], i, j, k0);
+    bp.c[D] = RowCells(bpt.c[D], i, j, k0);
+    for (int c = 0; c < 3; ++c) shear.s[c] = RowCells(s.s[c], i, j, k0);
+  }
+};
+
+inline ShearFromScratch shear_from(const Scratch3& s) { return ShearFromScratch{{s.c[0], s.c[1], s.c[2]}}; }
+
+// rhs_D += (div S)_D on the D-faces, D = x, y, z in one pass (the three read the same psi and shear
+// stresses, once from memory). OnPredictor: the force is added after the constant-viscosity
+// predictor has run over the whole grid without it (kernels/momentum_predictor.hpp), where u* is
+// linear in rhs^k:
+//   rhs^k_D += f_D,   u*_D += dt gamma f_D / (1 + pen_D)
+// (equal to predicting with rhs^k + f to round-off): one pass over the body's faces instead of
+// splitting the grid's predictor into the boxes around them.
+template <bool OnPredictor>
+struct ElasticForces {
+  Velocity rhs, star;  // star: u* (OnPredictor only)
   WindowField psi;
   Tensor6 b, bp;
   ShearFromScratch shear;
   double G;
   double inv_h[3];
-  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k) const {
-    if (face_stencil_max<D>(psi, i, j, k) == 0.0) return;
-    rhs(i, j, k) += elastic_force_at_face<D>(psi, b, bp, shear, G, inv_h, i, j, k);
+  PredictorTerms terms;  // OnPredictor only
+
+  template <int D>
+  KOKKOS_FORCEINLINE_FUNCTION void face(int i, int j, int k) const {
+    if (face_stencil_max<D>(psi, i, j, k) == 0.0) return;  // no psi in the stencil: no force
+    const double f = elastic_force_at_face<D>(psi, b, bp, shear, G, inv_h, i, j, k);
+    rhs.c[D](i, j, k) += f;
+    if (OnPredictor) star.c[D](i, j, k) += terms.a * f / (1.0 + terms.penal * terms.chi_row(D, j)[k]);
+  }
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k) const {  // GPUs: per cell, its three faces
+    face<0>(i, j, k);
+    face<1>(i, j, k);
+    face<2>(i, j, k);
+  }
+
+  // The D-faces of a row: the force is computed on every face and kept where the stencil holds psi
+  // (a select, so the loop vectorises; the other faces keep rhs and u* as face() leaves them).
+  template <int D>
+  void row_of(int i, int j, int k0, int k1) const {
+    const FaceRow<D> f(psi, b, bp, shear, i, j, k0);
+    double* r = &rhs.c[D](i, j, k0);
+    double* u = OnPredictor ? &star.c[D](i, j, k0) : nullptr;
+    const double* chi = OnPredictor ? terms.chi_row(D, j) : nullptr;
+    EULERFSI_INDEPENDENT_LOOP
+    for (int k = k0; k < k1; ++k) {
+      const double m = face_stencil_max<D>(f.psi, i, j, k);
+      const double force = elastic_force_at_face<D>(f.psi, f.b, f.bp, f.shear, G, inv_h, i, j, k);
+      r[k - k0] = m == 0.0 ? r[k - k0] : r[k - k0] + force;
+      if (OnPredictor) u[k - k0] = m == 0.0 ? u[k - k0] : u[k - k0] + terms.a * force / (1.0 + terms.penal * chi[k]);
+    }
+  }
+  void row(int i, int j, int k0, int k1) const {  // hosts: the row's data stays in cache for all three
+    row_of<0>(i, j, k0, k1);
+    row_of<1>(i, j, k0, k1);
+    row_of<2>(i, j, k0, k1);
   }
 };
 
@@ -123,50 +215,20 @@ inline void add_elastic_force(const Velocity& rhs, const WindowField& psi, const
                               const Scratch3& shear, double G, const double h[3], const Box& box) {
   if (box.empty()) return;
   shear_stress(shear, psi, b, b_prev, G, stress_cells(box, psi.window()));
-  const double ih0 = 1.0 / h[0], ih1 = 1.0 / h[1], ih2 = 1.0 / h[2];
-  for_each_cell("eulerfsi::solid::elastic_u", box,
-                ElasticForce<0>{rhs.c[0], psi, b, b_prev, {shear}, G, {ih0, ih1, ih2}});
-  for_each_cell("eulerfsi::solid::elastic_v", box,
-                ElasticForce<1>{rhs.c[1], psi, b, b_prev, {shear}, G, {ih0, ih1, ih2}});
-  for_each_cell("eulerfsi::solid::elastic_w", box,
-                ElasticForce<2>{rhs.c[2], psi, b, b_prev, {shear}, G, {ih0, ih1, ih2}});
+  const ElasticForces<false> f{rhs, Velocity{}, psi, b, b_prev, shear_from(shear), G, {1.0 / h[0], 1.0 / h[1], 1.0 / h[2]}, {}};
+  for_each_row("eulerfsi::solid::elastic_force", box, f);
 }
 
-// The same force added after the constant-viscosity predictor has run over the whole grid
-// without it (kernels/momentum_predictor.hpp), where u* is linear in rhs^k:
-//   rhs^k_D += f_D,   u*_D += dt gamma f_D / (1 + pen_D)
-// (equal to predicting with rhs^k + f to round-off). One pass over the body's faces instead of
-// splitting the grid's predictor into the boxes around them.
-template <int D>
-struct ElasticForceOnPredictor {
-  Field3 rhs, star;
-  WindowField psi;
-  Tensor6 b, bp;
-  ShearFromScratch shear;
-  double G;
-  double inv_h[3];
-  PredictorTerms terms;
-  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k) const {
-    if (face_stencil_max<D>(psi, i, j, k) == 0.0) return;
-    const double f = elastic_force_at_face<D>(psi, b, bp, shear, G, inv_h, i, j, k);
-    rhs(i, j, k) += f;
-    star(i, j, k) += terms.a * f / (1.0 + terms.penal * terms.chi_row(D, j)[k]);
-  }
-};
-
-// rhs^k and u* (the predictor's output) on the faces of `box`, one body; `shear`: scratch on psi's window.
+// rhs^k and u* (`star`, the predictor's output) on the faces of `box`, one body; `shear`: scratch
+// on psi's window.
 inline void add_elastic_force_to_predictor(const Velocity& rhs, const Velocity& star, const PredictorTerms& terms,
                                            const WindowField& psi, const Tensor6& b, const Tensor6& b_prev,
                                            const Scratch3& shear, double G, const double h[3], const Box& box) {
   if (box.empty()) return;
   shear_stress(shear, psi, b, b_prev, G, stress_cells(box, psi.window()));
-  const double ih0 = 1.0 / h[0], ih1 = 1.0 / h[1], ih2 = 1.0 / h[2];
-  for_each_cell("eulerfsi::solid::elastic_u_star", box,
-                ElasticForceOnPredictor<0>{rhs.c[0], star.c[0], psi, b, b_prev, {shear}, G, {ih0, ih1, ih2}, terms});
-  for_each_cell("eulerfsi::solid::elastic_v_star", box,
-                ElasticForceOnPredictor<1>{rhs.c[1], star.c[1], psi, b, b_prev, {shear}, G, {ih0, ih1, ih2}, terms});
-  for_each_cell("eulerfsi::solid::elastic_w_star", box,
-                ElasticForceOnPredictor<2>{rhs.c[2], star.c[2], psi, b, b_prev, {shear}, G, {ih0, ih1, ih2}, terms});
+  const ElasticForces<true> f{rhs, star, psi, b, b_prev, shear_from(shear), G, {1.0 / h[0], 1.0 / h[1], 1.0 / h[2]},
+                              terms};
+  for_each_row("eulerfsi::solid::elastic_force_on_predictor", box, f);
 }
 
 // f = value on `box` (a Box, unlike Kokkos::deep_copy on a whole View).
