@@ -58,7 +58,8 @@ struct ShearStressRow {
     for (int c = 0; c < 3; ++c) {
       double* out = &shear.c[c](i, j, k0);
       EULERFSI_INDEPENDENT_LOOP
-      for (int n = 0; n < k1 - k0; ++n) out[n] = ps[n] * G * (0.5 * (bs[c][n] + bps[c][n]) - 0.0);
+      for (int n = 0; n < k1 - k0; ++n)  // elastic_stress<D, E>'s expression (its "- 0" too: the same bits)
+        out[n] = ps[n] * G * (0.5 * (bs[c][n] + bps[c][n]) - 0.0);
     }
   }
 };
