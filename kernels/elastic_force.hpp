@@ -210,14 +210,20 @@ struct ElasticForces {
 // across each edge), within `limit` (the body's window).
 inline Box stress_cells(const Box& faces, const Box& limit) { return faces.grown(1, limit); }
 
+// The shear stresses on the cells the faces read, then the faces' force: f's fields are one body's.
+template <bool OnPredictor>
+void launch_elastic_forces(const ElasticForces<OnPredictor>& f, const Scratch3& shear, const Box& box, const char* label) {
+  if (box.empty()) return;
+  shear_stress(shear, f.psi, f.b, f.bp, f.G, stress_cells(box, f.psi.window()));
+  for_each_row(label, box, f);
+}
+
 // rhs_D += (div S)_D on the D-faces of `box` for D = x, y, z (one body; call once per body);
 // `shear`: scratch on psi's window.
 inline void add_elastic_force(const Velocity& rhs, const WindowField& psi, const Tensor6& b, const Tensor6& b_prev,
                               const Scratch3& shear, double G, const double h[3], const Box& box) {
-  if (box.empty()) return;
-  shear_stress(shear, psi, b, b_prev, G, stress_cells(box, psi.window()));
   const ElasticForces<false> f{rhs, Velocity{}, psi, b, b_prev, shear_from(shear), G, {1.0 / h[0], 1.0 / h[1], 1.0 / h[2]}, {}};
-  for_each_row("eulerfsi::solid::elastic_force", box, f);
+  launch_elastic_forces(f, shear, box, "eulerfsi::solid::elastic_force");
 }
 
 // rhs^k and u* (`star`, the predictor's output) on the faces of `box`, one body; `shear`: scratch
@@ -225,11 +231,9 @@ inline void add_elastic_force(const Velocity& rhs, const WindowField& psi, const
 inline void add_elastic_force_to_predictor(const Velocity& rhs, const Velocity& star, const PredictorTerms& terms,
                                            const WindowField& psi, const Tensor6& b, const Tensor6& b_prev,
                                            const Scratch3& shear, double G, const double h[3], const Box& box) {
-  if (box.empty()) return;
-  shear_stress(shear, psi, b, b_prev, G, stress_cells(box, psi.window()));
   const ElasticForces<true> f{rhs, star, psi, b, b_prev, shear_from(shear), G, {1.0 / h[0], 1.0 / h[1], 1.0 / h[2]},
                               terms};
-  for_each_row("eulerfsi::solid::elastic_force_on_predictor", box, f);
+  launch_elastic_forces(f, shear, box, "eulerfsi::solid::elastic_force_on_predictor");
 }
 
 // f = value on `box` (a Box, unlike Kokkos::deep_copy on a whole View).

@@ -94,21 +94,12 @@ KOKKOS_INLINE_FUNCTION EdgeGeometry edge_geometry(const Vector3& q, const Refere
   return {phi0, g2 > 0.0 ? compat::sqrt(g2) : 1.0, g2 > 0.0 ? compat::sqrt(gh2 / g2) : 0.5 / inv_2h[0]};
 }
 
-// Signed distance to the body's surface in the current configuration, d = phi0(xi) / |grad_x phi0|;
-// `normal_h` (if given) gets the spacing along the normal (EdgeGeometry).
+// Signed distance to the body's surface in the current configuration, d = phi0(xi) / |grad_x phi0|.
 KOKKOS_INLINE_FUNCTION double current_distance(const Vector3& q, const ReferenceShape& shape, const double x[3],
-                                               const double inv_2h[3], int i, int j, int k, const double G[3][3],
-                                               double* normal_h = nullptr) {
-  const EdgeGeometry e = edge_geometry(q, shape, x, inv_2h, i, j, k, G);
-  if (normal_h) *normal_h = e.normal_h;
-  return e.distance(shape.shift);
-}
-KOKKOS_INLINE_FUNCTION double current_distance(const Vector3& q, const ReferenceShape& shape, const double x[3],
-                                               const double inv_2h[3], int i, int j, int k,
-                                               double* normal_h = nullptr) {
+                                               const double inv_2h[3], int i, int j, int k) {
   double G[3][3];
   displacement_gradient(q, inv_2h, i, j, k, G);
-  return current_distance(q, shape, x, inv_2h, i, j, k, G, normal_h);
+  return edge_geometry(q, shape, x, inv_2h, i, j, k, G).distance(shape.shift);
 }
 
 // Smoothed Heaviside of half-width eps (Sussman, Smereka & Osher 1994): 0 below -eps, 1 above eps,
@@ -318,10 +309,11 @@ inline void solid_from_map(const WindowField& psi, const Tensor6& b, const Vecto
   for_each_cell("eulerfsi::refmap::psi_and_b", box, KOKKOS_LAMBDA(int i, int j, int k) {
     const double inv_2h[3] = {i0, i1, i2};
     double G[3][3];
-    EdgeGeometry e{0.0, 1.0, 0.0};
+    // gradient_norm stays 0 where psi is not derived (it is > 0 where it is)
+    EdgeGeometry e{0.0, 0.0, 0.0};
     const double p = psi_of_map(m, level, shape, xc, inv_2h, width, max_level, i, j, k, G, &e);
     // a derived psi that rounded below 0 too: psi_at_shift() clips it as psi_from_map() does
-    if (keep_edges && derived_level(level(i, j, k), max_level)) edges.store(i, j, k, e, width * e.normal_h);
+    if (keep_edges && e.gradient_norm > 0.0) edges.store(i, j, k, e, width * e.normal_h);
     if (p < 0.0) {
       psi(i, j, k) = 0.0;
       for (int c = 0; c < kTensorComponents; ++c) bb.c[c](i, j, k) = c < 3 ? 1.0 : 0.0;

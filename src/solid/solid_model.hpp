@@ -71,7 +71,8 @@ class SolidModel {
   };
   virtual StepStart psi_at_step_start() const { return {}; }
   // Three fields on psi's window that hold nothing between this model's substeps (its own
-  // buffers): the elastic force's shear stresses are written there (kernels::shear_stress).
+  // buffers): the elastic force's shear stresses are written there (kernels::shear_stress), after
+  // the model's own use within its substep (the map's edge geometry).
   virtual kernels::Scratch3 scratch() = 0;
 };
 

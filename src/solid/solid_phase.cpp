@@ -87,22 +87,26 @@ void SolidPhase::mixture_viscosity(const Field3& mu, double mu_fluid, double bac
 // The force on a face reads psi one cell beyond it: the cells where psi may be non-zero, grown by one.
 Box SolidPhase::elastic_faces(const SolidBody& body) const { return body.model->psi_box().grown(1, grid_.interior()); }
 
-void SolidPhase::add_elastic_force(const kernels::Velocity& rhs) const {
+template <class AddForce>
+void SolidPhase::for_each_body_faces(const AddForce& add) const {
   for (const auto& body : bodies_) {
     const Box faces = elastic_faces(body);
-    if (faces.empty()) continue;
-    kernels::add_elastic_force(rhs, body.psi, body.b, body.b_prev, body.model->scratch(), body.G, grid_.h, faces);
+    if (!faces.empty()) add(body, faces);
   }
+}
+
+void SolidPhase::add_elastic_force(const kernels::Velocity& rhs) const {
+  for_each_body_faces([&](const SolidBody& body, const Box& faces) {
+    kernels::add_elastic_force(rhs, body.psi, body.b, body.b_prev, body.model->scratch(), body.G, grid_.h, faces);
+  });
 }
 
 void SolidPhase::add_elastic_force_to_predictor(const kernels::Velocity& rhs, const kernels::Velocity& star,
                                                 const kernels::PredictorTerms& terms) const {
-  for (const auto& body : bodies_) {
-    const Box faces = elastic_faces(body);
-    if (faces.empty()) continue;
+  for_each_body_faces([&](const SolidBody& body, const Box& faces) {
     kernels::add_elastic_force_to_predictor(rhs, star, terms, body.psi, body.b, body.b_prev, body.model->scratch(),
                                             body.G, grid_.h, faces);
-  }
+  });
 }
 
 Box SolidPhase::elastic_force_region() const {

@@ -59,6 +59,9 @@ class SolidPhase final : public SolidCoupling {
  private:
   // The faces add_elastic_force() writes for one body.
   Box elastic_faces(const SolidBody& body) const;
+  // add(body, faces) for every body with faces on this rank.
+  template <class AddForce>
+  void for_each_body_faces(const AddForce& add) const;
   CaseConfig cfg_;
   Grid grid_;
   Comm comm_;

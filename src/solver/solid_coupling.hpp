@@ -21,7 +21,7 @@ class SolidCoupling {
   virtual Box viscosity_region() const = 0;
   // rhs_D += d/dx_E [ psi G ((B^k + B^(k-1))/2 - I)_DE ] for every body.
   virtual void add_elastic_force(const kernels::Velocity& rhs) const = 0;
-  // The same force after a predictor that left it out (kernels::ElasticForceOnPredictor): rhs^k
+  // The same force after a predictor that left it out (kernels::ElasticForces<true>): rhs^k
   // += f and u* (`star`) += terms.a f / (1 + pen), with the predictor's terms.
   virtual void add_elastic_force_to_predictor(const kernels::Velocity& rhs, const kernels::Velocity& star,
                                               const kernels::PredictorTerms& terms) const = 0;

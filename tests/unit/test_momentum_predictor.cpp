@@ -66,6 +66,21 @@ kernels::Mask2 random_mask(std::mt19937& gen) {
   return chi;
 }
 
+// Predictor terms writing u* into `star`, with the wall masks chi and penalization `penal`.
+kernels::PredictorTerms masked_terms(const kernels::Velocity& star, const kernels::Mask2 chi[3], double penal) {
+  kernels::PredictorTerms t;
+  t.a = 0.004;
+  t.b = -0.002;
+  t.penal = penal;
+  t.u_wall[0] = 0.7;
+  for (int c = 0; c < 3; ++c) {
+    t.rhs_old_to_star[c] = star.c[c].data();
+    t.chi[c] = chi[c].data();
+    t.chi_stride[c] = long(chi[c].stride(0));
+  }
+  return t;
+}
+
 double max_relative_difference(const kernels::Velocity& a, const kernels::Velocity& b, const Box& box) {
   double rel = 0.0;
   for (int c = 0; c < 3; ++c) {
@@ -153,19 +168,7 @@ TEST(MomentumPredictor, PerCellFormEqualsTheSweep) {
   const kernels::Velocity rhs_old = random_velocity("r", gen);
   const kernels::Velocity star_sweep = copy_of(rhs_old), star_cell = copy_of(rhs_old);
   const kernels::Velocity rhs_sweep = copy_of(force), rhs_cell = copy_of(force);
-  auto terms_for = [&](const kernels::Velocity& star) {
-    kernels::PredictorTerms t;
-    t.a = 0.004;
-    t.b = -0.002;
-    t.penal = 25.0;
-    t.u_wall[0] = 0.7;
-    for (int c = 0; c < 3; ++c) {
-      t.rhs_old_to_star[c] = star.c[c].data();
-      t.chi[c] = chi[c].data();
-      t.chi_stride[c] = long(chi[c].stride(0));
-    }
-    return t;
-  };
+  auto terms_for = [&](const kernels::Velocity& star) { return masked_terms(star, chi, 25.0); };
   kernels::momentum_predict(rhs_sweep, u, mu, h, terms_for(star_sweep), box);
   const long st[3] = {long(u.c[0].stride(0)), long(u.c[0].stride(1)), 1};
   const kernels::MomentumPredictCell<false, true> f{{rhs_cell.c[0].data(), rhs_cell.c[1].data(), rhs_cell.c[2].data()},
@@ -206,19 +209,7 @@ DEVICE_TEST(MomentumPredictor, ElasticForceAfterThePredictorEqualsTheForceInside
   }
   const kernels::Scratch3 shear{{random_field("s", gen, 0, 1), random_field("s", gen, 0, 1), random_field("s", gen, 0, 1)}};
   const Box box{{kGhost, kGhost, kGhost}, {kExt[0] - kGhost, kExt[1] - kGhost, kExt[2] - kGhost}};
-  auto terms_for = [&](const kernels::Velocity& star) {
-    kernels::PredictorTerms t;
-    t.a = 0.004;
-    t.b = -0.002;
-    t.penal = 40.0;
-    t.u_wall[0] = 0.7;
-    for (int c = 0; c < 3; ++c) {
-      t.rhs_old_to_star[c] = star.c[c].data();
-      t.chi[c] = chi[c].data();
-      t.chi_stride[c] = long(chi[c].stride(0));
-    }
-    return t;
-  };
+  auto terms_for = [&](const kernels::Velocity& star) { return masked_terms(star, chi, 40.0); };
   // inside: rhs = f on entry, the forced predictor adds the momentum terms
   const kernels::Velocity star_inside = copy_of(rhs_old), rhs_inside = copy_of(rhs_old);
   for (int c = 0; c < 3; ++c) Kokkos::deep_copy(rhs_inside.c[c], 0.0);
