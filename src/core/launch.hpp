@@ -24,12 +24,24 @@ inline Policy2 plane_policy(const Box& b) {
   return Policy2({b.lo[0], b.lo[1]}, {b.hi[0] > b.lo[0] ? b.hi[0] : b.lo[0], b.hi[1] > b.lo[1] ? b.hi[1] : b.lo[1]});
 }
 
+// for_each_cell / for_each_row on hosts: one i-plane per tile, handed out dynamically. A body's
+// boxes are small and their work is uneven (the cells near its surface), and Kokkos' default host
+// tile of two planes split an odd number of planes 10 : 7 between two threads; the map's kernels
+// then scaled 1.6-1.8x on two threads. Each cell writes only itself, so the order is free;
+// reductions keep plane_policy's static split, so that their summation order stays fixed.
+using DynamicPolicy2 = Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2, Kokkos::Iterate::Right, Kokkos::Iterate::Right>,
+                                             Kokkos::Schedule<Kokkos::Dynamic>>;
+inline DynamicPolicy2 row_policy(const Box& b) {
+  const int hi0 = b.hi[0] > b.lo[0] ? b.hi[0] : b.lo[0], hi1 = b.hi[1] > b.lo[1] ? b.hi[1] : b.lo[1];
+  return DynamicPolicy2({b.lo[0], b.lo[1]}, {hi0, hi1}, {1, hi1 > b.lo[1] ? hi1 - b.lo[1] : 1});
+}
+
 // f(i, j, k) for every cell of the box; f writes nothing that another cell's f reads.
 template <class F>
 void for_each_cell(const char* label, const Box& b, const F& f) {
   if constexpr (kHostKernels) {
     const int k0 = b.lo[2], k1 = b.hi[2];
-    Kokkos::parallel_for(label, plane_policy(b), KOKKOS_LAMBDA(int i, int j) {
+    Kokkos::parallel_for(label, row_policy(b), KOKKOS_LAMBDA(int i, int j) {
       EULERFSI_INDEPENDENT_LOOP
       for (int k = k0; k < k1; ++k) f(i, j, k);
     });
@@ -44,7 +56,7 @@ template <class F>
 void for_each_row(const char* label, const Box& b, const F& f) {
   if constexpr (kHostKernels) {
     const int k0 = b.lo[2], k1 = b.hi[2];
-    Kokkos::parallel_for(label, plane_policy(b), KOKKOS_LAMBDA(int i, int j) { f.row(i, j, k0, k1); });
+    Kokkos::parallel_for(label, row_policy(b), KOKKOS_LAMBDA(int i, int j) { f.row(i, j, k0, k1); });
   } else {
     Kokkos::parallel_for(label, b.policy(), f);
   }
