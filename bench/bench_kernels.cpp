@@ -118,7 +118,7 @@ void BM_MomentumPredict(benchmark::State& state) {
   }
   // u* over rhs_old every call: the same values each time (u does not change), as in a substep
   time_kernel(state, c.grid, cell_bytes(c.grid, 12),
-              [&] { kernels::momentum_predict(rhs, c.flow.state().vel, 1.0 / c.cfg.flow.Re, c.grid.h, terms, false, box); });
+              [&] { kernels::momentum_predict(rhs, c.flow.state().vel, 1.0 / c.cfg.flow.Re, c.grid.h, terms, box); });
 }
 
 // divergence as the solver calls it with a constant flow rate, summing the open faces' u in the

@@ -61,14 +61,11 @@ inline void momentum_predict_impl(const Velocity& rhs, const Velocity& u, const 
   }
 }
 
-// rhs^k and u* on `box` with the constant viscosity mu; force: rhs holds f on entry.
+// rhs^k and u* on `box` with the constant viscosity mu (the elastic force, if any, is added after:
+// SolidCoupling::add_elastic_force_to_predictor).
 inline void momentum_predict(const Velocity& rhs, const Velocity& u, double mu, const double h[3],
-                             const PredictorTerms& terms, bool force, const Box& box) {
-  if (force) {
-    momentum_predict_impl<true, true>(rhs, u, Field3(), mu, h, terms, box, "eulerfsi::momentum::predict_forced");
-  } else {
-    momentum_predict_impl<true, false>(rhs, u, Field3(), mu, h, terms, box, "eulerfsi::momentum::predict");
-  }
+                             const PredictorTerms& terms, const Box& box) {
+  momentum_predict_impl<true, false>(rhs, u, Field3(), mu, h, terms, box, "eulerfsi::momentum::predict");
 }
 
 // The same with the viscosity field mu (cell centres, ghosts filled); rhs holds f on entry.

@@ -254,7 +254,7 @@ void FlowSolver::predict(double dt, int s, const SolidCoupling* solids, const Bo
   terms.u_wall[0] = -frame_u_;  // the wall is at rest in the laboratory: u_wall = -frame_u in the grid's frame
   if (mixture.empty()) {
     // one viscosity: the whole grid in one pass, the elastic force added after it on the bodies' faces
-    kernels::momentum_predict(rhs_new_, vel, mu_explicit_, grid_.h, terms, false, box);
+    kernels::momentum_predict(rhs_new_, vel, mu_explicit_, grid_.h, terms, box);
     if (solids) solids->add_elastic_force_to_predictor(rhs_new_, rhs_old_, terms);
   } else {
     // the mixture's viscosity region (with the force's faces) takes the variable-viscosity pass
@@ -263,7 +263,7 @@ void FlowSolver::predict(double dt, int s, const SolidCoupling* solids, const Bo
     solids->add_elastic_force(rhs_new_);
     Box parts[6];
     const int n = difference(box, forced, parts);
-    for (int p = 0; p < n; ++p) kernels::momentum_predict(rhs_new_, vel, mu_explicit_, grid_.h, terms, false, parts[p]);
+    for (int p = 0; p < n; ++p) kernels::momentum_predict(rhs_new_, vel, mu_explicit_, grid_.h, terms, parts[p]);
     kernels::momentum_predict(rhs_new_, vel, mu_, grid_.h, terms, forced);
   }
   // u* is in rhs_old, rhs^k in rhs_new: u* becomes the velocity, rhs^k the next rhs^(k-1), u^k the scratch
