@@ -57,6 +57,8 @@ struct ReferenceShape {
 constexpr double kLevelSolid = 1.0;
 // Whether psi is derived at a cell of this level (else psi = 0 and B = I).
 KOKKOS_INLINE_FUNCTION bool derived_level(double l, double max_level) { return l >= kLevelSolid && l <= max_level; }
+// Whether reference_map_rhs advects q at a cell of level l: the solid, and known cells where psi != 0.
+KOKKOS_INLINE_FUNCTION bool advected(double l, double psi) { return l == kLevelSolid || (l > kLevelSolid && psi != 0.0); }
 
 // grad q at the cell centre by central differences: G[a][b] = dq_a/dx_b.
 KOKKOS_INLINE_FUNCTION void displacement_gradient(const Vector3& q, const double inv_2h[3], int i, int j, int k,
@@ -127,8 +129,7 @@ inline void reference_map_rhs(const Vector3& rhs, const Vector3& q, const Window
   const Field3 u = vel.c[0], v = vel.c[1], w = vel.c[2];
   const Vector3 r = rhs, m = q;
   for_each_cell("eulerfsi::refmap::rhs", box, KOKKOS_LAMBDA(int i, int j, int k) {
-    const double l = level(i, j, k);
-    if (l < kLevelSolid || (l > kLevelSolid && psi(i, j, k) == 0.0)) {
+    if (!advected(level(i, j, k), psi(i, j, k))) {
       for (int a = 0; a < 3; ++a) r.c[a](i, j, k) = 0.0;
       return;
     }
@@ -183,6 +184,9 @@ struct ExtrapolationSweep {
   Vector3 q;
   WindowField level;
   double s;
+  // The last sweep: a cell with no known cell among its 6 face neighbours is only marked
+  // (pending_level) and fitted later, if a WENO stencil will read it (DeferredFits).
+  bool defer_off_axis = false;
 
   // c0 of the normal equations [[S, m^T], [m, A]] (c0, c) = (b0, b) of the basis (1, r), by the
   // Schur complement: c0 = (b0 - m^T A^-1 b) / (S - m^T A^-1 m), with A^-1 m by cofactors (A, the
@@ -218,7 +222,26 @@ struct ExtrapolationSweep {
     for (int a = -1; a <= 1 && !touches; ++a)
       for (int b = -1; b <= 1 && !touches; ++b)
         for (int c = -1; c <= 1 && !touches; ++c) touches = known(i + a, j + b, k + c);
-    if (touches) fit(i, j, k);
+    if (touches) visit(i, j, k);
+  }
+
+  // The level of a cell the last sweep leaves for DeferredFits.
+  KOKKOS_INLINE_FUNCTION double pending_level() const { return s + 1.5; }
+
+  // Whether one of the cell's 6 face neighbours is known: the central differences of psi, B and
+  // the classification at known cells read exactly these.
+  KOKKOS_INLINE_FUNCTION bool face_neighbour_known(int i, int j, int k) const {
+    return known(i - 1, j, k) || known(i + 1, j, k) || known(i, j - 1, k) || known(i, j + 1, k) ||
+           known(i, j, k - 1) || known(i, j, k + 1);
+  }
+
+  // An unknown cell next to a known one: fitted now, or marked for DeferredFits.
+  KOKKOS_INLINE_FUNCTION void visit(int i, int j, int k) const {
+    if (defer_off_axis && !face_neighbour_known(i, j, k)) {
+      level(i, j, k) = pending_level();
+      return;
+    }
+    fit(i, j, k);
   }
 
   // Whether any of the 9 cells (i + a, j + b, k), |a|, |b| <= 1, is known.
@@ -236,7 +259,7 @@ struct ExtrapolationSweep {
     bool before = known_column(i, j, k0 - 1), here = known_column(i, j, k0);
     for (int k = k0; k < k1; ++k) {
       const bool after = known_column(i, j, k + 1);
-      if (level(i, j, k) == 0.0 && (before || here || after)) fit(i, j, k);
+      if (level(i, j, k) == 0.0 && (before || here || after)) visit(i, j, k);
       before = here;
       here = after;
     }
@@ -291,8 +314,45 @@ struct ExtrapolationSweep {
   }
 };
 
-inline void extrapolation_sweep(const Vector3& q, const WindowField& level, int sweep, const Box& box) {
-  for_each_row("eulerfsi::refmap::extrapolate", box, ExtrapolationSweep{q, level, double(sweep)});
+// defer_off_axis: the last sweep, whose cells without a known face neighbour wait for
+// finish_deferred_fits().
+inline void extrapolation_sweep(const Vector3& q, const WindowField& level, int sweep, const Box& box,
+                                bool defer_off_axis = false) {
+  for_each_row("eulerfsi::refmap::extrapolate", box, ExtrapolationSweep{q, level, double(sweep), defer_off_axis});
+}
+
+// The last sweep's pending cells once psi is known: fitted exactly as that sweep would have (the
+// known cells it reads, levels 1..s, have not changed since) where the WENO5 stencil of an advected
+// cell reads them, 3 cells either way along each axis; the others (about a third of that sweep's
+// cells around a sphere) are read by nothing before the next classification forgets them, and
+// keep their stale q. Every pending cell gets the level s + 1 the sweep would have given it.
+struct DeferredFits {
+  ExtrapolationSweep sweep;
+  WindowField psi;
+
+  KOKKOS_INLINE_FUNCTION bool read_by_advection(int i, int j, int k) const {
+    const WindowField& l = sweep.level;
+    for (int r = 1; r <= 3; ++r)
+      if (advected(l(i - r, j, k), psi(i - r, j, k)) || advected(l(i + r, j, k), psi(i + r, j, k)) ||
+          advected(l(i, j - r, k), psi(i, j - r, k)) || advected(l(i, j + r, k), psi(i, j + r, k)) ||
+          advected(l(i, j, k - r), psi(i, j, k - r)) || advected(l(i, j, k + r), psi(i, j, k + r)))
+        return true;
+    return false;
+  }
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k) const {
+    if (sweep.level(i, j, k) != sweep.pending_level()) return;
+    if (read_by_advection(i, j, k)) {
+      sweep.fit(i, j, k);
+    } else {
+      sweep.level(i, j, k) = sweep.s + 1.0;
+    }
+  }
+};
+
+inline void finish_deferred_fits(const Vector3& q, const WindowField& level, const WindowField& psi, int last_sweep,
+                                 const Box& box) {
+  for_each_cell("eulerfsi::refmap::deferred_fits",
+                box, DeferredFits{ExtrapolationSweep{q, level, double(last_sweep), true}, psi});
 }
 
 // psi and B from the map on the known cells whose central differences read known cells

@@ -161,6 +161,7 @@ void ReferenceMapModel::set_initial_condition(SolidBody& body) {
   volume0_ = exact_volume(body.cfg, grid_);
   derive_solid(body, box);
   for (int it = 0; it < kInitialVolumeIterations; ++it) correct_volume(body, box);
+  finish_extrapolation(body, box);
   for (int c = 0; c < kernels::kTensorComponents; ++c) Kokkos::deep_copy(body.b_prev.c[c].data, body.b.c[c].data);
   update_active_box(body);
 }
@@ -198,6 +199,7 @@ void ReferenceMapModel::advance_substep(SolidBody& body, const kernels::Velocity
   std::swap(body.b, body.b_prev);
   derive_solid(body, box);
   correct_volume(body, box);
+  finish_extrapolation(body, box);
   update_active_box(body);
 }
 
@@ -237,11 +239,21 @@ void ReferenceMapModel::extrapolate(const Box& region) {
   solid_box_ = any ? solid : Box{};
   for (int sweep = 1; sweep <= kBand; ++sweep) {
     const Box reach = any ? intersection(region, solid.grown(sweep, grid_.all())) : Box{};
-    if (!reach.empty()) kernels::extrapolation_sweep(q_, level_, sweep, reach);
+    if (!reach.empty()) kernels::extrapolation_sweep(q_, level_, sweep, reach, sweep == kBand);
+    if (sweep == kBand) last_sweep_box_ = reach;
     // every rank exchanges, with or without a body: the halo exchange is collective
     fill_map_ghosts(region);
     fill_level(region);
   }
+}
+
+// The last sweep's cells without a known face neighbour, once psi is final: fitted where the next
+// substep's WENO5 stencils read them (kernels::DeferredFits). psi's ghosts are filled, so a cell
+// next to a slab end sees the advected cells across it.
+void ReferenceMapModel::finish_extrapolation(const SolidBody& body, const Box& region) {
+  if (!last_sweep_box_.empty()) kernels::finish_deferred_fits(q_, level_, body.psi, kBand, last_sweep_box_);
+  fill_map_ghosts(region);
+  fill_level(region);
 }
 
 void ReferenceMapModel::derive_solid(SolidBody& body, const Box& region) {

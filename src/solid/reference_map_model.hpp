@@ -60,6 +60,7 @@ class ReferenceMapModel final : public SolidModel {
   bool near_wall(const Box& changed, int d, bool high) const;
   void fill(const WindowField& f, const Box& changed) const;
   void extrapolate(const Box& region);
+  void finish_extrapolation(const SolidBody& body, const Box& region);
   double solid_margin() const;
   void derive_solid(SolidBody& body, const Box& region);
   void update_active_box(SolidBody& body);
@@ -91,6 +92,8 @@ class ReferenceMapModel final : public SolidModel {
   // The bounding box of the solid cells (level 1; ghosts included), set by every extrapolation
   // (after a restore, of every known cell): psi is derived only within two cells of them (psi_box)
   Box solid_box_{};
+  // Where the last extrapolation sweep ran: its pending cells wait there for finish_extrapolation()
+  Box last_sweep_box_{};
   SolidWindow window_;
   double volume0_ = 0.0;
   bool whole_slab_ = false;
