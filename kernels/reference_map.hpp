@@ -351,8 +351,7 @@ struct DeferredFits {
 
 inline void finish_deferred_fits(const Vector3& q, const WindowField& level, const WindowField& psi, int last_sweep,
                                  const Box& box) {
-  for_each_cell("eulerfsi::refmap::deferred_fits",
-                box, DeferredFits{ExtrapolationSweep{q, level, double(last_sweep), true}, psi});
+  for_each_cell("eulerfsi::refmap::deferred_fits", box, DeferredFits{ExtrapolationSweep{q, level, double(last_sweep)}, psi});
 }
 
 // psi and B from the map on the known cells whose central differences read known cells

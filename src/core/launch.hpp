@@ -20,9 +20,10 @@ namespace eulerfsi {
 
 constexpr bool kHostKernels = Kokkos::SpaceAccessibility<Kokkos::HostSpace, MemSpace>::accessible;
 
-inline Policy2 plane_policy(const Box& b) {
-  return Policy2({b.lo[0], b.lo[1]}, {b.hi[0] > b.lo[0] ? b.hi[0] : b.lo[0], b.hi[1] > b.lo[1] ? b.hi[1] : b.lo[1]});
-}
+// The box's upper bound in direction d, never below its lower one (an empty box: no iterations).
+inline int plane_hi(const Box& b, int d) { return b.hi[d] > b.lo[d] ? b.hi[d] : b.lo[d]; }
+
+inline Policy2 plane_policy(const Box& b) { return Policy2({b.lo[0], b.lo[1]}, {plane_hi(b, 0), plane_hi(b, 1)}); }
 
 // for_each_cell / for_each_row on hosts: one i-plane per tile, handed out dynamically. A body's
 // boxes are small and their work is uneven (the cells near its surface), and Kokkos' default host
@@ -32,8 +33,8 @@ inline Policy2 plane_policy(const Box& b) {
 using DynamicPolicy2 = Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2, Kokkos::Iterate::Right, Kokkos::Iterate::Right>,
                                              Kokkos::Schedule<Kokkos::Dynamic>>;
 inline DynamicPolicy2 row_policy(const Box& b) {
-  const int hi0 = b.hi[0] > b.lo[0] ? b.hi[0] : b.lo[0], hi1 = b.hi[1] > b.lo[1] ? b.hi[1] : b.lo[1];
-  return DynamicPolicy2({b.lo[0], b.lo[1]}, {hi0, hi1}, {1, hi1 > b.lo[1] ? hi1 - b.lo[1] : 1});
+  const int rows = plane_hi(b, 1) - b.lo[1];
+  return DynamicPolicy2({b.lo[0], b.lo[1]}, {plane_hi(b, 0), plane_hi(b, 1)}, {1, rows > 0 ? rows : 1});
 }
 
 // f(i, j, k) for every cell of the box; f writes nothing that another cell's f reads.

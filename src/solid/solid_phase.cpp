@@ -95,17 +95,20 @@ void SolidPhase::for_each_body_faces(const AddForce& add) const {
   }
 }
 
+// The lambdas take copies (Views and the spacing), not this: the kernels they launch capture them.
 void SolidPhase::add_elastic_force(const kernels::Velocity& rhs) const {
-  for_each_body_faces([&](const SolidBody& body, const Box& faces) {
-    kernels::add_elastic_force(rhs, body.psi, body.b, body.b_prev, body.model->scratch(), body.G, grid_.h, faces);
+  const double* h = grid_.h;
+  for_each_body_faces([rhs, h](const SolidBody& body, const Box& faces) {
+    kernels::add_elastic_force(rhs, body.psi, body.b, body.b_prev, body.model->scratch(), body.G, h, faces);
   });
 }
 
 void SolidPhase::add_elastic_force_to_predictor(const kernels::Velocity& rhs, const kernels::Velocity& star,
                                                 const kernels::PredictorTerms& terms) const {
-  for_each_body_faces([&](const SolidBody& body, const Box& faces) {
+  const double* h = grid_.h;
+  for_each_body_faces([rhs, star, terms, h](const SolidBody& body, const Box& faces) {
     kernels::add_elastic_force_to_predictor(rhs, star, terms, body.psi, body.b, body.b_prev, body.model->scratch(),
-                                            body.G, grid_.h, faces);
+                                            body.G, h, faces);
   });
 }
 
