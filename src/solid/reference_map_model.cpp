@@ -124,6 +124,7 @@ double ReferenceMapModel::window_cells(const SolidConfig& s, const Grid& g, bool
 }
 
 void ReferenceMapModel::allocate(SolidBody& body, const Grid&) {
+  forget_written();
   const auto members = window_members(body);
   if (whole_slab_) {
     window_.hold_whole_slab(members);
@@ -134,6 +135,7 @@ void ReferenceMapModel::allocate(SolidBody& body, const Grid&) {
 
 void ReferenceMapModel::use_whole_slab(bool on, SolidBody& body) {
   whole_slab_ = on;
+  forget_written();
   if (on) window_.hold_whole_slab(window_members(body));
   update_active_box(body);
 }
@@ -163,6 +165,7 @@ void ReferenceMapModel::set_initial_condition(SolidBody& body) {
   for (int it = 0; it < kInitialVolumeIterations; ++it) correct_volume(body, box);
   finish_extrapolation(body, box);
   for (int c = 0; c < kernels::kTensorComponents; ++c) Kokkos::deep_copy(body.b_prev.c[c].data, body.b.c[c].data);
+  b_prev_written_ = b_written_;
   update_active_box(body);
 }
 
@@ -197,6 +200,7 @@ void ReferenceMapModel::advance_substep(SolidBody& body, const kernels::Velocity
   // B before the substep becomes B_prev by a swap (no copy; ghosts included): derive_solid writes
   // B anew on the box, and outside it both hold I (the box holds every known cell, grown by 2)
   std::swap(body.b, body.b_prev);
+  std::swap(b_written_, b_prev_written_);
   derive_solid(body, box);
   correct_volume(body, box);
   finish_extrapolation(body, box);
@@ -256,9 +260,16 @@ void ReferenceMapModel::finish_extrapolation(const SolidBody& body, const Box& r
   fill_level(region);
 }
 
+// psi and B are derived on psi_box() (every cell of level 1..kMaxDerivedLevel lies there) and
+// reset to 0 and I where they were derived before; the rest of the region holds 0 and I already.
 void ReferenceMapModel::derive_solid(SolidBody& body, const Box& region) {
-  kernels::solid_from_map(body.psi, body.b, q_, level_, shape_, centres_, kHalfWidthCells, kMaxDerivedLevel, grid_.h, region,
+  const Box derived = intersection(region, psi_box());
+  Box cells = region;
+  if (!psi_written_.everywhere && !b_written_.everywhere)
+    cells = intersection(region, bounding_box(derived, bounding_box(psi_written_.box, b_written_.box)));
+  kernels::solid_from_map(body.psi, body.b, q_, level_, shape_, centres_, kHalfWidthCells, kMaxDerivedLevel, grid_.h, cells,
                           edges());
+  psi_written_ = b_written_ = Written{derived, false};
   fill(body.psi, region);
   for (int c = 0; c < kernels::kTensorComponents; ++c) fill(body.b.c[c], region);
 }
@@ -368,6 +379,7 @@ void ReferenceMapModel::restore_scalars(const std::map<std::string, double>& s) 
 // onto the window around it.
 void ReferenceMapModel::fill_ghosts(SolidBody& body) {
   const Box all = grid_.all(), interior = grid_.interior(), everywhere{{0, 0, 0}, {0, 0, 0}};
+  forget_written();
   for (int a = 0; a < 3; ++a) bc_->fill_scalar(q_.c[a], everywhere);
   bc_->fill_scalar(level_, everywhere);
   for (int d = 1; d < 3; ++d)
