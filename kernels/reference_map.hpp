@@ -9,6 +9,8 @@
 //   psi = H_eps(-phi0(xi) / |grad_x phi0(xi)|)   (phi0: signed distance of the reference shape)
 // u . grad q is the WENO5 flux difference minus q div_h u, which is exact for a linear q (a rigid
 // motion) because WENO5 reconstructs a linear function exactly at every face.
+#include <stdexcept>
+
 #include "core/compat.hpp"
 #include "core/launch.hpp"
 #include "core/types.hpp"
@@ -291,12 +293,19 @@ struct ExtrapolationSweep {
     // per known point instead of 22.
     double S = 0, Sa = 0, Sb = 0, Sc = 0, Saa = 0, Sab = 0, Sac = 0, Sbb = 0, Sbc = 0, Scc = 0;
     double rhs[4][3] = {};
+    // level and q share one window (same_window): one offset serves the four fields (the window
+    // accessor computed it for each, 100 times per fit)
+    const long s0 = long(level.data.stride(0)), s1 = long(level.data.stride(1));
+    const long centre = long(i - level.lo[0]) * s0 + long(j - level.lo[1]) * s1 + long(k - level.lo[2]);
+    const double *const l0 = level.data.data(), *const q0 = q.c[0].data.data(), *const q1 = q.c[1].data.data(),
+                        *const q2 = q.c[2].data.data();
     for (int a = -2; a <= 2; ++a)
       for (int b = -2; b <= 2; ++b) {
         double sw = 0, swc = 0, swcc = 0, swq[3] = {}, swcq[3] = {};
         // the line's five cells are contiguous (z is the fastest index)
-        const double* lv = &level(i + a, j + b, k - 2);
-        const double* ql[3] = {&q.c[0](i + a, j + b, k - 2), &q.c[1](i + a, j + b, k - 2), &q.c[2](i + a, j + b, k - 2)};
+        const long line = centre + a * s0 + b * s1 - 2;
+        const double* lv = l0 + line;
+        const double* ql[3] = {q0 + line, q1 + line, q2 + line};
         for (int c = -2; c <= 2; ++c) {
           if (!known_level(lv[c + 2])) continue;
           const double w = inv_r2[a * a + b * b + c * c], wc = w * c;
@@ -331,8 +340,20 @@ struct ExtrapolationSweep {
 
 // defer_off_axis: the last sweep, whose cells without a known face neighbour wait for
 // finish_deferred_fits().
+// Whether the fields are stored alike (one window, one layout): ExtrapolationSweep::fit indexes
+// them with one offset.
+inline bool same_window(const Vector3& q, const WindowField& level) {
+  for (int a = 0; a < 3; ++a)
+    for (int d = 0; d < 3; ++d)
+      if (q.c[a].lo[d] != level.lo[d] || q.c[a].data.extent(d) != level.data.extent(d) ||
+          q.c[a].data.stride(d) != level.data.stride(d))
+        return false;
+  return true;
+}
+
 inline void extrapolation_sweep(const Vector3& q, const WindowField& level, int sweep, const Box& box,
                                 bool defer_off_axis = false) {
+  if (!same_window(q, level)) throw std::logic_error("extrapolation_sweep: q and its level are on different windows");
   for_each_row("eulerfsi::refmap::extrapolate", box, ExtrapolationSweep{q, level, double(sweep), defer_off_axis});
 }
 
@@ -366,6 +387,7 @@ struct DeferredFits {
 
 inline void finish_deferred_fits(const Vector3& q, const WindowField& level, const WindowField& psi, int last_sweep,
                                  const Box& box) {
+  if (!same_window(q, level)) throw std::logic_error("finish_deferred_fits: q and its level are on different windows");
   for_each_cell("eulerfsi::refmap::deferred_fits", box, DeferredFits{ExtrapolationSweep{q, level, double(last_sweep)}, psi});
 }
 
