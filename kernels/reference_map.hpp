@@ -306,9 +306,10 @@ struct ExtrapolationSweep {
         const long line = centre + a * s0 + b * s1 - 2;
         const double* lv = l0 + line;
         const double* ql[3] = {q0 + line, q1 + line, q2 + line};
+        const double* w_line = inv_r2 + a * a + b * b;  // w = w_line[c^2]
         for (int c = -2; c <= 2; ++c) {
           if (!known_level(lv[c + 2])) continue;
-          const double w = inv_r2[a * a + b * b + c * c], wc = w * c;
+          const double w = w_line[c * c], wc = w * c;
           sw += w;
           swc += wc;
           swcc += wc * c;
