@@ -30,7 +30,7 @@ for t in $threads; do
     # the GPU sizes (BM_StepLarge) take seconds per step here
     # (and each repetition runs STEP_MIN_TIME seconds: a few steps would sample this VM's drift)
     pair_bodies=; [ "$t" = 1 ] && pair_bodies='|BM_StepPairBodies/'
-    [ "$b" = step ] && extra=(--benchmark_filter="BM_Step/|BM_StepImplicitViscosity/|BM_StepPair/$pair_bodies"
+    [ "$b" = step ] && extra=(--benchmark_filter="BM_Step/|BM_StepImplicitViscosity/|BM_StepPair/|BM_StepPairMeasuredPlans/$pair_bodies"
                               --benchmark_min_time="${STEP_MIN_TIME:-2}")
     echo "== bench_$b, OMP_NUM_THREADS=$t" >&2
     OMP_NUM_THREADS=$t "$exe" "${flags[@]}" "${extra[@]}" --benchmark_out="$out/${b}_t$t.json" >&2

@@ -24,6 +24,17 @@ struct Vector3 {
   WindowField c[3];
 };
 
+// Whether the fields are stored alike (one window, one layout): the host rows of the extrapolation
+// and of the advection index them with one offset.
+inline bool same_window(const Vector3& q, const WindowField& level) {
+  for (int a = 0; a < 3; ++a)
+    for (int d = 0; d < 3; ++d)
+      if (q.c[a].lo[d] != level.lo[d] || q.c[a].data.extent(d) != level.data.extent(d) ||
+          q.c[a].data.stride(d) != level.data.stride(d))
+        return false;
+  return true;
+}
+
 // The reference shape: a sphere (nearest periodic image of its centre) or the layer y < y_top.
 struct ReferenceShape {
   bool sphere = true;
@@ -129,24 +140,75 @@ KOKKOS_INLINE_FUNCTION double smoothed_delta(double s, double eps) {
 // A known cell outside the solid keeps its advected q only if it turns solid, and one with psi = 0
 // is at least psi's half-width (1.5 cells) outside the surface, which moves less than a cell per
 // step: it is extrapolated anew instead.
-inline void reference_map_rhs(const Vector3& rhs, const Vector3& q, const WindowField& level, const WindowField& psi,
-                              const Velocity& vel, const double h[3], const Box& box) {
-  const double ih0 = 1.0 / h[0], ih1 = 1.0 / h[1], ih2 = 1.0 / h[2];
-  const Field3 u = vel.c[0], v = vel.c[1], w = vel.c[2];
-  const Vector3 r = rhs, m = q;
-  for_each_cell("eulerfsi::refmap::rhs", box, KOKKOS_LAMBDA(int i, int j, int k) {
+struct MapAdvectionRhs {
+  Vector3 rhs, q;
+  WindowField level, psi;
+  Field3 u, v, w;
+  double inv_h[3];
+
+  // Per cell (GPUs).
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k) const {
     if (!advected(level(i, j, k), psi(i, j, k))) {
-      for (int a = 0; a < 3; ++a) r.c[a](i, j, k) = 0.0;
+      for (int a = 0; a < 3; ++a) rhs.c[a](i, j, k) = 0.0;
       return;
     }
-    const double inv_h[3] = {ih0, ih1, ih2};
-    const double div = (u(i, j, k) - u(i - 1, j, k)) * ih0 + (v(i, j, k) - v(i, j - 1, k)) * ih1 +
-                       (w(i, j, k) - w(i, j, k - 1)) * ih2;
+    const double div = (u(i, j, k) - u(i - 1, j, k)) * inv_h[0] + (v(i, j, k) - v(i, j - 1, k)) * inv_h[1] +
+                       (w(i, j, k) - w(i, j, k - 1)) * inv_h[2];
     const double uc[3] = {0.5 * (u(i, j, k) + u(i - 1, j, k)), 0.5 * (v(i, j, k) + v(i, j - 1, k)),
                           0.5 * (w(i, j, k) + w(i, j, k - 1))};
     for (int a = 0; a < 3; ++a)
-      r.c[a](i, j, k) = -uc[a] - (weno_divergence(m.c[a], u, v, w, inv_h, i, j, k) - m.c[a](i, j, k) * div);
-  });
+      rhs.c[a](i, j, k) = -uc[a] - (weno_divergence(q.c[a], u, v, w, inv_h, i, j, k) - q.c[a](i, j, k) * div);
+  }
+
+  // q^WENO5 at the face between p[0] and p[e], upwinded by the face velocity (face_value_upwind).
+  KOKKOS_FORCEINLINE_FUNCTION static double face(const double* p, long e, double u_face) {
+    return u_face >= 0.0 ? weno5(p[-2 * e], p[-e], p[0], p[e], p[2 * e]) : weno5(p[3 * e], p[2 * e], p[e], p[0], p[-e]);
+  }
+
+  // A row (hosts): the same sums, with one offset for the window fields and one for the velocity
+  // (the accessors computed one per read), and the flux through the face between two advected cells
+  // along the row computed once, as the upper face of the first and the lower face of the second.
+  void row(int i, int j, int k0, int k1) const {
+    const WindowField& q0 = q.c[0];  // q, rhs, level and psi share one window (same_window)
+    const long s0 = long(q0.data.stride(0)), s1 = long(q0.data.stride(1));
+    const long cell = long(i - q0.lo[0]) * s0 + long(j - q0.lo[1]) * s1 + long(k0 - q0.lo[2]);
+    const long t0 = long(u.stride(0)), t1 = long(u.stride(1));
+    const long face0 = long(i) * t0 + long(j) * t1 + k0;
+    const double *lv = level.data.data() + cell, *ps = psi.data.data() + cell;
+    const double* qa[3] = {q.c[0].data.data() + cell, q.c[1].data.data() + cell, q.c[2].data.data() + cell};
+    double* ra[3] = {rhs.c[0].data.data() + cell, rhs.c[1].data.data() + cell, rhs.c[2].data.data() + cell};
+    const double *up = u.data() + face0, *vp = v.data() + face0, *wp = w.data() + face0;
+    double upper_z[3] = {0.0, 0.0, 0.0};  // the previous cell's F_z at its upper face
+    bool previous_advected = false;
+    for (int n = 0; n < k1 - k0; ++n) {
+      if (!advected(lv[n], ps[n])) {
+        for (int a = 0; a < 3; ++a) ra[a][n] = 0.0;
+        previous_advected = false;
+        continue;
+      }
+      const double uP = up[n], uM = up[n - t0], vP = vp[n], vM = vp[n - t1], wP = wp[n], wM = wp[n - 1];
+      const double div = (uP - uM) * inv_h[0] + (vP - vM) * inv_h[1] + (wP - wM) * inv_h[2];
+      const double uc[3] = {0.5 * (uP + uM), 0.5 * (vP + vM), 0.5 * (wP + wM)};
+      for (int a = 0; a < 3; ++a) {
+        const double* p = qa[a] + n;
+        const double fx = (uP * face(p, s0, uP) - uM * face(p - s0, s0, uM)) * inv_h[0];
+        const double fy = (vP * face(p, s1, vP) - vM * face(p - s1, s1, vM)) * inv_h[1];
+        const double lower_z = previous_advected ? upper_z[a] : wM * face(p - 1, 1, wM);
+        upper_z[a] = wP * face(p, 1, wP);
+        const double fz = (upper_z[a] - lower_z) * inv_h[2];
+        ra[a][n] = -uc[a] - (fx + fy + fz - p[0] * div);
+      }
+      previous_advected = true;
+    }
+  }
+};
+
+inline void reference_map_rhs(const Vector3& rhs, const Vector3& q, const WindowField& level, const WindowField& psi,
+                              const Velocity& vel, const double h[3], const Box& box) {
+  if (!same_window(q, level) || !same_window(rhs, level) || !same_window(Vector3{{psi, psi, psi}}, level))
+    throw std::logic_error("reference_map_rhs: q, rhs, psi and the level are on different windows");
+  for_each_row("eulerfsi::refmap::rhs", box,
+               MapAdvectionRhs{rhs, q, level, psi, vel.c[0], vel.c[1], vel.c[2], {1.0 / h[0], 1.0 / h[1], 1.0 / h[2]}});
 }
 
 // Low-storage RK3 substep on the three components: q += dt (gamma rhs + zeta rhs_old).
@@ -341,17 +403,6 @@ struct ExtrapolationSweep {
 
 // defer_off_axis: the last sweep, whose cells without a known face neighbour wait for
 // finish_deferred_fits().
-// Whether the fields are stored alike (one window, one layout): ExtrapolationSweep::fit indexes
-// them with one offset.
-inline bool same_window(const Vector3& q, const WindowField& level) {
-  for (int a = 0; a < 3; ++a)
-    for (int d = 0; d < 3; ++d)
-      if (q.c[a].lo[d] != level.lo[d] || q.c[a].data.extent(d) != level.data.extent(d) ||
-          q.c[a].data.stride(d) != level.data.stride(d))
-        return false;
-  return true;
-}
-
 inline void extrapolation_sweep(const Vector3& q, const WindowField& level, int sweep, const Box& box,
                                 bool defer_off_axis = false) {
   if (!same_window(q, level)) throw std::logic_error("extrapolation_sweep: q and its level are on different windows");

@@ -77,11 +77,12 @@ def main():
                 continue
             grid, a = grid_of(name)
             fn = re.match(r"BM_(\w+)", name).group(1)
-            if kind == "step" and fn in ("StepPair", "StepPairBodies"):
+            if kind == "step" and fn in ("StepPair", "StepPairBodies", "StepPairMeasuredPlans"):
                 # one flow step and one step with the bodies in turn: the ratio from the same minutes
                 paired[(name, threads, ranks)] = r["x_flow"]
                 bodies = f"{a['bodies']} x sphere d = {int(a['d_percent']) / 100:g} D"
-                label = f"**paired: whole RK3 step {grid} + {bodies} (reference map), the flow alone in turn**"
+                plans = ", FFTW_MEASURE plans" if fn == "StepPairMeasuredPlans" else ""
+                label = f"**paired: whole RK3 step {grid} + {bodies} (reference map), the flow alone in turn{plans}**"
                 ns = r["particle_ns_per_cell_step"]
                 rows.append((1, grid, name, threads, ranks, label, ns, 1, ns, None))
             elif kind == "step":
