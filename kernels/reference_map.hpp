@@ -165,10 +165,28 @@ struct MapAdvectionRhs {
     return u_face >= 0.0 ? weno5(p[-2 * e], p[-e], p[0], p[e], p[2 * e]) : weno5(p[3 * e], p[2 * e], p[e], p[0], p[-e]);
   }
 
-  // A row (hosts): the same sums, with one offset for the window fields and one for the velocity
-  // (the accessors computed one per read), and the flux through the face between two advected cells
-  // along the row computed once, as the upper face of the first and the lower face of the second.
-  void row(int i, int j, int k0, int k1) const {
+  // Each cell's flux through its upper y-face, carried to the next row of the plane (hosts), and
+  // whether the cell was advected (else the next row computes its lower face itself).
+  static constexpr int kCarriedCells = 256;
+  struct CarriedY {
+    double flux[3][kCarriedCells];
+    bool valid[kCarriedCells];
+  };
+
+  // A plane (hosts): its rows in order, the y-face fluxes carried from each row to the next
+  // (rows longer than kCarriedCells compute both y-faces).
+  void plane(int i, int j0, int j1, int k0, int k1) const {
+    CarriedY carried;
+    CarriedY* y = k1 - k0 <= kCarriedCells ? &carried : nullptr;
+    if (y)
+      for (int n = 0; n < k1 - k0; ++n) y->valid[n] = false;
+    for (int j = j0; j < j1; ++j) row(i, j, k0, k1, y);
+  }
+
+  // A row: the same sums as per cell, with one offset for the window fields and one for the
+  // velocity (the accessors computed one per read), and the flux through a face between two
+  // advected cells computed once: along the row (z) and, with `y`, from the row below.
+  void row(int i, int j, int k0, int k1, CarriedY* y) const {
     const WindowField& q0 = q.c[0];  // q, rhs, level and psi share one window (same_window)
     const long s0 = long(q0.data.stride(0)), s1 = long(q0.data.stride(1));
     const long cell = long(i - q0.lo[0]) * s0 + long(j - q0.lo[1]) * s1 + long(k0 - q0.lo[2]);
@@ -184,21 +202,27 @@ struct MapAdvectionRhs {
       if (!advected(lv[n], ps[n])) {
         for (int a = 0; a < 3; ++a) ra[a][n] = 0.0;
         previous_advected = false;
+        if (y) y->valid[n] = false;
         continue;
       }
       const double uP = up[n], uM = up[n - t0], vP = vp[n], vM = vp[n - t1], wP = wp[n], wM = wp[n - 1];
       const double div = (uP - uM) * inv_h[0] + (vP - vM) * inv_h[1] + (wP - wM) * inv_h[2];
       const double uc[3] = {0.5 * (uP + uM), 0.5 * (vP + vM), 0.5 * (wP + wM)};
+      const bool below_advected = y && y->valid[n];
       for (int a = 0; a < 3; ++a) {
         const double* p = qa[a] + n;
         const double fx = (uP * face(p, s0, uP) - uM * face(p - s0, s0, uM)) * inv_h[0];
-        const double fy = (vP * face(p, s1, vP) - vM * face(p - s1, s1, vM)) * inv_h[1];
+        const double lower_y = below_advected ? y->flux[a][n] : vM * face(p - s1, s1, vM);
+        const double upper_y = vP * face(p, s1, vP);
+        if (y) y->flux[a][n] = upper_y;
+        const double fy = (upper_y - lower_y) * inv_h[1];
         const double lower_z = previous_advected ? upper_z[a] : wM * face(p - 1, 1, wM);
         upper_z[a] = wP * face(p, 1, wP);
         const double fz = (upper_z[a] - lower_z) * inv_h[2];
         ra[a][n] = -uc[a] - (fx + fy + fz - p[0] * div);
       }
       previous_advected = true;
+      if (y) y->valid[n] = true;
     }
   }
 };
@@ -207,8 +231,8 @@ inline void reference_map_rhs(const Vector3& rhs, const Vector3& q, const Window
                               const Velocity& vel, const double h[3], const Box& box) {
   if (!same_window(q, level) || !same_window(rhs, level) || !same_window(Vector3{{psi, psi, psi}}, level))
     throw std::logic_error("reference_map_rhs: q, rhs, psi and the level are on different windows");
-  for_each_row("eulerfsi::refmap::rhs", box,
-               MapAdvectionRhs{rhs, q, level, psi, vel.c[0], vel.c[1], vel.c[2], {1.0 / h[0], 1.0 / h[1], 1.0 / h[2]}});
+  for_each_plane("eulerfsi::refmap::rhs", box,
+                 MapAdvectionRhs{rhs, q, level, psi, vel.c[0], vel.c[1], vel.c[2], {1.0 / h[0], 1.0 / h[1], 1.0 / h[2]}});
 }
 
 // Low-storage RK3 substep on the three components: q += dt (gamma rhs + zeta rhs_old).

@@ -63,6 +63,20 @@ void for_each_row(const char* label, const Box& b, const F& f) {
   }
 }
 
+// f.plane(i, j0, j1, k0, k1) for every i-plane of the box on hosts, dynamically scheduled: one
+// thread walks a whole plane, row after row, so a body can carry values from one row to the next;
+// GPUs call f(i, j, k) per cell.
+template <class F>
+void for_each_plane(const char* label, const Box& b, const F& f) {
+  if constexpr (kHostKernels) {
+    const int j0 = b.lo[1], j1 = b.hi[1], k0 = b.lo[2], k1 = b.hi[2];
+    Kokkos::RangePolicy<ExecSpace, Kokkos::Schedule<Kokkos::Dynamic>> planes(b.lo[0], plane_hi(b, 0));
+    Kokkos::parallel_for(label, planes.set_chunk_size(1), KOKKOS_LAMBDA(int i) { f.plane(i, j0, j1, k0, k1); });
+  } else {
+    Kokkos::parallel_for(label, b.policy(), f);
+  }
+}
+
 // f(i, j, k, acc) for every cell, combined by a built-in reducer (Sum, Max, Min).
 template <class F, class Reducer>
 void reduce_cells(const char* label, const Box& b, const F& f, const Reducer& reducer) {
