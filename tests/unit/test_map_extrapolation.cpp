@@ -1,6 +1,7 @@
 // The reference map's extrapolation beyond the body (kernels/reference_map.hpp): the least-squares
 // sweeps reproduce a rigid motion exactly, and the last sweep's deferred cells (DeferredFits)
-// hold, wherever anything reads them, the values of a full sweep, bit for bit.
+// hold, wherever anything reads them, the values of a full sweep, bit for bit; the host rows equal
+// the per-cell form (GPUs).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -146,4 +147,27 @@ TEST(MapExtrapolation, DeferredFitsAreTheFullSweepWhereverRead) {
   EXPECT_EQ(value_mismatch, 0) << "of " << read_band << " cells of the last sweep that are read";
   // about a third of the last shell is read by nothing: what the deferral saves
   EXPECT_GT(unread_band, read_band / 10);
+}
+
+// The host rows (each column of levels read once, level and q indexed with one offset) and the
+// per-cell form that GPUs run visit the same cells with the same fit: q and the levels bit for bit.
+TEST(MapExtrapolation, HostRowsEqualThePerCellForm) {
+  const Map rows(true), cells(true);
+  rows.extrapolate(false);
+  for (int s = 1; s <= kLastSweep; ++s)
+    Kokkos::parallel_for("per_cell_sweep", kInterior.policy(), kernels::ExtrapolationSweep{cells.q, cells.level, double(s)});
+  Kokkos::fence();
+  const HostCells lr = on_host(rows.level), lc = on_host(cells.level);
+  int band = 0, mismatch = 0;
+  for (int a = 0; a < 3; ++a) {
+    const HostCells qr = on_host(rows.q.c[a]), qc = on_host(cells.q.c[a]);
+    for (int i = 0; i < kN; ++i)
+      for (int j = 0; j < kN; ++j)
+        for (int k = 0; k < kN; ++k) {
+          band += a == 0 && lr(i, j, k) > kernels::kLevelSolid;
+          mismatch += !(qr(i, j, k) == qc(i, j, k)) + (a == 0 && lr(i, j, k) != lc(i, j, k));
+        }
+  }
+  EXPECT_GT(band, 2000);
+  EXPECT_EQ(mismatch, 0);
 }
