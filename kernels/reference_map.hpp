@@ -24,15 +24,15 @@ struct Vector3 {
   WindowField c[3];
 };
 
-// Whether the fields are stored alike (one window, one layout): the host rows of the extrapolation
-// and of the advection index them with one offset.
-inline bool same_window(const Vector3& q, const WindowField& level) {
-  for (int a = 0; a < 3; ++a)
-    for (int d = 0; d < 3; ++d)
-      if (q.c[a].lo[d] != level.lo[d] || q.c[a].data.extent(d) != level.data.extent(d) ||
-          q.c[a].data.stride(d) != level.data.stride(d))
-        return false;
+// Whether two fields are stored alike (one window, one layout): the host rows of the extrapolation
+// and of the advection index several with one offset.
+inline bool same_window(const WindowField& a, const WindowField& b) {
+  for (int d = 0; d < 3; ++d)
+    if (a.lo[d] != b.lo[d] || a.data.extent(d) != b.data.extent(d) || a.data.stride(d) != b.data.stride(d)) return false;
   return true;
+}
+inline bool same_window(const Vector3& q, const WindowField& level) {
+  return same_window(q.c[0], level) && same_window(q.c[1], level) && same_window(q.c[2], level);
 }
 
 // The reference shape: a sphere (nearest periodic image of its centre) or the layer y < y_top.
@@ -229,7 +229,7 @@ struct MapAdvectionRhs {
 
 inline void reference_map_rhs(const Vector3& rhs, const Vector3& q, const WindowField& level, const WindowField& psi,
                               const Velocity& vel, const double h[3], const Box& box) {
-  if (!same_window(q, level) || !same_window(rhs, level) || !same_window(Vector3{{psi, psi, psi}}, level))
+  if (!same_window(q, level) || !same_window(rhs, level) || !same_window(psi, level))
     throw std::logic_error("reference_map_rhs: q, rhs, psi and the level are on different windows");
   for_each_plane("eulerfsi::refmap::rhs", box,
                  MapAdvectionRhs{rhs, q, level, psi, vel.c[0], vel.c[1], vel.c[2], {1.0 / h[0], 1.0 / h[1], 1.0 / h[2]}});

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 
 #include "kernels/reference_map.hpp"
 
@@ -170,4 +171,14 @@ TEST(MapExtrapolation, HostRowsEqualThePerCellForm) {
   }
   EXPECT_GT(band, 2000);
   EXPECT_EQ(mismatch, 0);
+}
+
+// The host rows index level and q with one offset: fields on different windows are refused.
+TEST(MapExtrapolation, RefusesFieldsOnDifferentWindows) {
+  const Map m(false);
+  const WindowField wider(Field3("wider", kN, kN, kN + 2));
+  EXPECT_THROW(kernels::extrapolation_sweep(m.q, wider, 1, kInterior), std::logic_error);
+  const int origin[3] = {1, 0, 0};
+  const WindowField shifted(Field3("shifted", kN, kN, kN), origin);
+  EXPECT_THROW(kernels::finish_deferred_fits(m.q, shifted, shifted, kLastSweep, kInterior), std::logic_error);
 }
