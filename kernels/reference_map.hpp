@@ -92,24 +92,9 @@ struct EdgeGeometry {
   KOKKOS_INLINE_FUNCTION double distance(double shift) const { return (unshifted_phi - shift) / gradient_norm; }
 };
 
-// |grad_x phi0| = |(I + grad q)^T n| with n = grad_X phi0 (1 where it vanishes), summed as
-// edge_geometry() does.
-KOKKOS_INLINE_FUNCTION double gradient_norm(const double n[3], const double G[3][3]) {
-  double g2 = 0.0;
-  for (int b = 0; b < 3; ++b) {
-    double gb = n[b];
-    for (int a = 0; a < 3; ++a) gb += n[a] * G[a][b];
-    g2 += gb * gb;
-  }
-  return g2 > 0.0 ? compat::sqrt(g2) : 1.0;
-}
-
-// G: grad q at the cell (displacement_gradient).
-KOKKOS_INLINE_FUNCTION EdgeGeometry edge_geometry(const Vector3& q, const ReferenceShape& shape, const double x[3],
-                                                  const double inv_2h[3], int i, int j, int k, const double G[3][3]) {
-  const double X[3] = {x[0] + q.c[0](i, j, k), x[1] + q.c[1](i, j, k), x[2] + q.c[2](i, j, k)};
-  double n[3];
-  const double phi0 = shape.unshifted(X, n);
+// The same from phi0(X) + shift and n = grad_X phi0 at the cell's reference position X = x + q.
+KOKKOS_INLINE_FUNCTION EdgeGeometry edge_geometry_at(double phi0, const double n[3], const double inv_2h[3],
+                                                     const double G[3][3]) {
   double g2 = 0.0, gh2 = 0.0;
   for (int b = 0; b < 3; ++b) {
     double gb = n[b];
@@ -119,6 +104,15 @@ KOKKOS_INLINE_FUNCTION EdgeGeometry edge_geometry(const Vector3& q, const Refere
     gh2 += gb * gb * hb * hb;
   }
   return {phi0, g2 > 0.0 ? compat::sqrt(g2) : 1.0, g2 > 0.0 ? compat::sqrt(gh2 / g2) : 0.5 / inv_2h[0]};
+}
+
+// G: grad q at the cell (displacement_gradient).
+KOKKOS_INLINE_FUNCTION EdgeGeometry edge_geometry(const Vector3& q, const ReferenceShape& shape, const double x[3],
+                                                  const double inv_2h[3], int i, int j, int k, const double G[3][3]) {
+  const double X[3] = {x[0] + q.c[0](i, j, k), x[1] + q.c[1](i, j, k), x[2] + q.c[2](i, j, k)};
+  double n[3];
+  const double phi0 = shape.unshifted(X, n);
+  return edge_geometry_at(phi0, n, inv_2h, G);
 }
 
 // Smoothed Heaviside of half-width eps (Sussman, Smereka & Osher 1994): 0 below -eps, 1 above eps,
@@ -158,11 +152,6 @@ struct MapAdvectionRhs {
                           0.5 * (w(i, j, k) + w(i, j, k - 1))};
     for (int a = 0; a < 3; ++a)
       rhs.c[a](i, j, k) = -uc[a] - (weno_divergence(q.c[a], u, v, w, inv_h, i, j, k) - q.c[a](i, j, k) * div);
-  }
-
-  // q^WENO5 at the face between p[0] and p[e], upwinded by the face velocity (face_value_upwind).
-  KOKKOS_FORCEINLINE_FUNCTION static double face(const double* p, long e, double u_face) {
-    return u_face >= 0.0 ? weno5(p[-2 * e], p[-e], p[0], p[e], p[2 * e]) : weno5(p[3 * e], p[2 * e], p[e], p[0], p[-e]);
   }
 
   // Each cell's flux through its upper y-face, carried to the next row of the plane (hosts), and
@@ -211,13 +200,13 @@ struct MapAdvectionRhs {
       const bool below_advected = y && y->valid[n];
       for (int a = 0; a < 3; ++a) {
         const double* p = qa[a] + n;
-        const double fx = (uP * face(p, s0, uP) - uM * face(p - s0, s0, uM)) * inv_h[0];
-        const double lower_y = below_advected ? y->flux[a][n] : vM * face(p - s1, s1, vM);
-        const double upper_y = vP * face(p, s1, vP);
+        const double fx = (uP * face_value_upwind(p, s0, uP) - uM * face_value_upwind(p - s0, s0, uM)) * inv_h[0];
+        const double lower_y = below_advected ? y->flux[a][n] : vM * face_value_upwind(p - s1, s1, vM);
+        const double upper_y = vP * face_value_upwind(p, s1, vP);
         if (y) y->flux[a][n] = upper_y;
         const double fy = (upper_y - lower_y) * inv_h[1];
-        const double lower_z = previous_advected ? upper_z[a] : wM * face(p - 1, 1, wM);
-        upper_z[a] = wP * face(p, 1, wP);
+        const double lower_z = previous_advected ? upper_z[a] : wM * face_value_upwind(p - 1, 1, wM);
+        upper_z[a] = wP * face_value_upwind(p, 1, wP);
         const double fz = (upper_z[a] - lower_z) * inv_h[2];
         ra[a][n] = -uc[a] - (fx + fy + fz - p[0] * div);
       }
@@ -265,15 +254,15 @@ inline void classify_solid(const WindowField& level, const Vector3& q, const Ref
     // not needed (about two thirds of these cells lie outside the body)
     const double X[3] = {xc(0, i) + m.c[0](i, j, k), xc(1, j) + m.c[1](i, j, k), xc(2, k) + m.c[2](i, j, k)};
     double n[3];
-    const double phi = shape.unshifted(X, n) - shape.shift;
-    if (!(phi < 0.0)) {
+    const double phi0 = shape.unshifted(X, n);
+    if (!(phi0 - shape.shift < 0.0)) {
       level(i, j, k) = 0.0;
       return;
     }
     const double inv_2h[3] = {i0, i1, i2};
     double G[3][3];
     displacement_gradient(m, inv_2h, i, j, k, G);
-    level(i, j, k) = phi / gradient_norm(n, G) < -margin ? kLevelSolid : 0.0;
+    level(i, j, k) = edge_geometry_at(phi0, n, inv_2h, G).distance(shape.shift) < -margin ? kLevelSolid : 0.0;
   });
 }
 

@@ -43,4 +43,11 @@ KOKKOS_FORCEINLINE_FUNCTION double face_value_upwind(const V& q, double u_face, 
                shifted<D>(q, i, j, k, -1));
 }
 
+// The same from a row's pointer: the face between p[0] and p[e] (e: the stride along the face's
+// normal), the values p[-2e..2e] or p[-e..3e].
+KOKKOS_FORCEINLINE_FUNCTION double face_value_upwind(const double* p, long e, double u_face) {
+  if (u_face >= 0.0) return weno5(p[-2 * e], p[-e], p[0], p[e], p[2 * e]);
+  return weno5(p[3 * e], p[2 * e], p[e], p[0], p[-e]);
+}
+
 }  // namespace eulerfsi::kernels

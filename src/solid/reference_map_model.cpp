@@ -261,15 +261,16 @@ void ReferenceMapModel::finish_extrapolation(const SolidBody& body, const Box& r
 }
 
 // psi and B are derived on psi_box() (every cell of level 1..kMaxDerivedLevel lies there) and
-// reset to 0 and I where they were derived before; the rest of the region holds 0 and I already.
+// reset to 0 and I where they were derived before (B's buffer two derivations ago, psi with
+// B_prev's one derivation ago); the rest of the region holds 0 and I already.
 void ReferenceMapModel::derive_solid(SolidBody& body, const Box& region) {
   const Box derived = intersection(region, psi_box());
   Box cells = region;
-  if (!psi_written_.everywhere && !b_written_.everywhere)
-    cells = intersection(region, bounding_box(derived, bounding_box(psi_written_.box, b_written_.box)));
+  if (!b_written_.everywhere && !b_prev_written_.everywhere)
+    cells = intersection(region, bounding_box(derived, bounding_box(b_written_.box, b_prev_written_.box)));
   kernels::solid_from_map(body.psi, body.b, q_, level_, shape_, centres_, kHalfWidthCells, kMaxDerivedLevel, grid_.h, cells,
                           edges());
-  psi_written_ = b_written_ = Written{derived, false};
+  b_written_ = Written{derived, false};
   fill(body.psi, region);
   for (int c = 0; c < kernels::kTensorComponents; ++c) fill(body.b.c[c], region);
 }

@@ -94,16 +94,17 @@ class ReferenceMapModel final : public SolidModel {
   Box solid_box_{};
   // Where the last extrapolation sweep ran: its pending cells wait there for finish_extrapolation()
   Box last_sweep_box_{};
-  // Where psi and each B buffer may differ from 0 and I: the cells psi and B were last derived on
-  // (psi_box() then). derive_solid() writes that and today's psi_box(), not the whole active box,
-  // whose rim (2-3 cells beyond psi_box on every side) held 0 and I already. `everywhere` until the
-  // first derivation after an allocation, a restore or a change of path.
+  // Where each B buffer may differ from I: the cells it was last derived on (psi_box() then); psi
+  // was last derived with B_prev's buffer (the swap), so it may differ from 0 only on B_prev's box.
+  // derive_solid() writes those and today's psi_box(), not the whole active box, whose rim (2-3
+  // cells beyond psi_box on every side) held 0 and I already. `everywhere` until the first
+  // derivation after an allocation, a restore or a change of path.
   struct Written {
     Box box{};
     bool everywhere = true;
   };
-  Written psi_written_, b_written_, b_prev_written_;
-  void forget_written() { psi_written_ = b_written_ = b_prev_written_ = Written{}; }
+  Written b_written_, b_prev_written_;
+  void forget_written() { b_written_ = b_prev_written_ = Written{}; }
   SolidWindow window_;
   double volume0_ = 0.0;
   bool whole_slab_ = false;
