@@ -295,18 +295,20 @@ void FlowSolver::predict_implicit_viscosity(double t_next, double dt, int s) {
                                     Rk3::zeta[s], c_imp, grid_.h, box);
     if (c == 0 && dpdx_applied_ != 0.0)
       kernels::add_open_x_velocity(implicit_rhs_, masks_.open_u, -Rk3::alpha(s) * dt * dpdx_applied_, box);
-    for (int dir = 1; dir <= 2; ++dir) {
-      if (grid_.bc[dir] != Boundary::Wall || c == dir) continue;  // the wall-normal component is zero there
-      const double k = 2.0 * c_imp / (grid_.h[dir] * grid_.h[dir]);
-      kernels::add_wall_velocity_term(implicit_rhs_, dir, grid_.n[dir], k * bc_.wall_velocity(c, dir, false, t_next),
-                                      k * bc_.wall_velocity(c, dir, true, t_next), box);
-    }
+    // the pipe's forcing first: its explicit estimate w + c L_h u reads the walls through u's ghosts,
+    // so w must not hold the solver's wall term yet (in a moving frame it would count twice)
     const double u_wall = c == 0 ? -frame_u_ : 0.0;
     kernels::force_implicit_wall(implicit_rhs_, vel.c[c], interpolated ? masks_.chi_wall[c] : masks_.chi[c], penal,
                                  u_wall, c_imp, grid_.h, box, kUpdateLabels[c]);
     if (interpolated)
       kernels::force_implicit_wall_layer(implicit_rhs_, vel.c[c], masks_.layer[c], masks_.weight[c],
                                          masks_.neighbour[c], penal, u_wall, c_imp, grid_.h, box, kWallLabels[c]);
+    for (int dir = 1; dir <= 2; ++dir) {
+      if (grid_.bc[dir] != Boundary::Wall || c == dir) continue;  // the wall-normal component is zero there
+      const double k = 2.0 * c_imp / (grid_.h[dir] * grid_.h[dir]);
+      kernels::add_wall_velocity_term(implicit_rhs_, dir, grid_.n[dir], k * bc_.wall_velocity(c, dir, false, t_next),
+                                      k * bc_.wall_velocity(c, dir, true, t_next), box);
+    }
     helmholtz_->solve(c, implicit_rhs_, c_imp);
     Kokkos::deep_copy(vel.c[c], implicit_rhs_);  // ghosts too: refilled by the caller
     std::swap(rhs_new_.c[c], rhs_old_.c[c]);
