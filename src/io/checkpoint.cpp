@@ -1,4 +1,5 @@
 #include "io/checkpoint.hpp"
+#include "io/disk_space.hpp"
 
 #include <fcntl.h>
 #include <hdf5.h>
@@ -351,6 +352,16 @@ void write_meta(hid_t file, const CheckpointMeta& m, hid_t dxpl) {
     write_attr(scalars.get(), key.c_str(), H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &value);
 }
 
+// Every rank has stopped writing to `path` (collective); rank 0 truncates it to zero bytes.
+void release_space(const std::string& path, MPI_Comm comm) {
+  MPI_Barrier(comm);
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  std::error_code ec;
+  if (rank == 0) fs::resize_file(path, 0, ec);
+  MPI_Barrier(comm);
+}
+
 // Writes the complete file at tmp; returns false on any rank's failure (agreed on every rank).
 bool write_tmp(const std::string& tmp, const Grid& g, MPI_Comm comm, const CheckpointMeta& m,
                const std::vector<CheckpointSource>& fields, std::string& why) {
@@ -374,7 +385,15 @@ bool write_tmp(const std::string& tmp, const Grid& g, MPI_Comm comm, const Check
   group.close();
   // H5Fflush makes every rank MPI_File_sync its own writes; H5Fclose alone does not sync
   ok = ok && H5Fflush(file.get(), H5F_SCOPE_GLOBAL) >= 0;
-  ok = file.close() && ok;
+  if (!all_ok(comm, ok)) {
+    // the close must succeed: a file HDF5 fails to close stays half-open and crashes the
+    // library's own clean-up in MPI_Finalize. Emptying it frees the space its metadata needs.
+    release_space(tmp, comm);
+    file.close();
+    why = "writing failed (disk full?)";
+    return false;
+  }
+  ok = file.close();
   if (!all_ok(comm, ok)) why = "writing failed (disk full?)";
   return why.empty();
 }
@@ -552,7 +571,9 @@ void write_checkpoint(const std::string& path, const Grid& grid, MPI_Comm comm, 
     std::error_code ec;
     fs::create_directories(dir_of(path), ec);
   }
-  std::string why;
+  std::string why = room_for_file(dir_of(path), std::uint64_t(fields.size()) * grid.global_cells() * 8 +
+                                                    m.config_toml.size(), comm);
+  if (!why.empty()) throw CheckpointError("cannot write checkpoint '" + tmp + "': " + why);
   try {
     if (!write_tmp(tmp, grid, comm, m, fields, why)) error = "cannot write checkpoint '" + tmp + "': " + why;
   } catch (const CheckpointError& e) {

@@ -1,4 +1,5 @@
 #include "io/field_writer.hpp"
+#include "io/disk_space.hpp"
 
 #include <hdf5.h>
 
@@ -51,26 +52,25 @@ void FieldWriter::write(long step, double t, const std::vector<NamedField>& fiel
   if (rank == 0) fs::create_directories(dir_ + "/fields");
   MPI_Barrier(comm_);
 
+  const std::string room =
+      room_for_file(dir_ + "/fields", std::uint64_t(fields.size()) * grid_.global_cells() * 8, comm_);
+  if (!room.empty()) throw std::runtime_error("cannot write '" + tmp_path + "': " + room);
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // our own messages, not the library's error dump
   hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
   H5Pset_fapl_mpio(fapl, comm_, MPI_INFO_NULL);
   hid_t file = H5Fcreate(tmp_path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
   H5Pclose(fapl);
   if (file < 0) throw std::runtime_error("cannot create '" + tmp_path + "': is the output directory writable?");
+  // every rank makes the same collective calls whatever failed; the ranks agree on the outcome at the end
   names_.clear();
-  try {
-    for (const auto& f : fields) {
+  std::string failed;
+  for (const auto& f : fields) {
+    try {
       write_hdf5_field(file, grid_, f.name, f.data);
-      names_.push_back(f.name);
+    } catch (const std::exception& e) {
+      if (failed.empty()) failed = e.what();
     }
-  } catch (...) {
-    // a snapshot that could not be completed is removed, never left half-written
-    H5Fclose(file);
-    if (rank == 0) {
-      std::error_code ec;
-      fs::remove(tmp_path, ec);
-    }
-    throw;
+    names_.push_back(f.name);
   }
   hid_t aspace = H5Screate(H5S_SCALAR);
   hid_t attr = H5Acreate2(file, "time", H5T_NATIVE_DOUBLE, aspace, H5P_DEFAULT, H5P_DEFAULT);
@@ -80,6 +80,22 @@ void FieldWriter::write(long step, double t, const std::vector<NamedField>& fiel
   H5Awrite(attr, H5T_NATIVE_DOUBLE, &x_offset);
   H5Aclose(attr);
   H5Sclose(aspace);
+  // the flush writes what is left, so that the close cannot fail
+  if (failed.empty() && H5Fflush(file, H5F_SCOPE_GLOBAL) < 0) failed = "writing '" + tmp_path + "' failed (disk full?)";
+  int bad = failed.empty() ? 0 : 1;
+  MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPI_INT, MPI_MAX, comm_);
+  if (bad) {
+    // a snapshot that could not be completed is removed, never left half-written. The close must
+    // succeed (a file HDF5 fails to close stays half-open and crashes the library's own clean-up
+    // in MPI_Finalize): emptying the file first frees the space its metadata needs.
+    MPI_Barrier(comm_);
+    std::error_code ec;
+    if (rank == 0) fs::resize_file(tmp_path, 0, ec);
+    MPI_Barrier(comm_);
+    H5Fclose(file);
+    if (rank == 0) fs::remove(tmp_path, ec);
+    throw std::runtime_error(failed.empty() ? "writing '" + tmp_path + "' failed on another rank (disk full?)" : failed);
+  }
   if (H5Fclose(file) < 0) throw std::runtime_error("closing '" + tmp_path + "' failed (disk full?)");
   MPI_Barrier(comm_);
   if (rank == 0) fs::rename(tmp_path, final_path);

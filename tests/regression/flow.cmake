@@ -54,3 +54,13 @@ add_test(NAME restart_with_other_columns
          COMMAND bash ${REG}/restart_columns.sh $<TARGET_FILE:eulerfsi> ${REG}/cases/particle_pipe.toml
                  ${CMAKE_BINARY_DIR}/regression/restart_columns)
 set_tests_properties(restart_with_other_columns PROPERTIES ENVIRONMENT "${EULERFSI_TEST_ENV}")
+# a disk that fills mid-run: exit 1 with one message, the last checkpoint kept and continued bit for
+# bit, no half-written file, no crash in the HDF5/MPI clean-up (on 1 rank, and on 2 with the moving grid)
+foreach(np_case "1;particle_pipe" "2;particle_pipe_frame")
+  list(GET np_case 0 np)
+  list(GET np_case 1 c)
+  add_test(NAME disk_full_np${np}_${c}
+           COMMAND bash ${REG}/disk_full.sh $<TARGET_FILE:eulerfsi> ${REG}/cases/${c}.toml
+                   ${CMAKE_BINARY_DIR}/regression/disk_full_np${np}_${c} ${np})
+  set_tests_properties(disk_full_np${np}_${c} PROPERTIES ENVIRONMENT "${EULERFSI_TEST_ENV}" PROCESSORS ${np})
+endforeach()
