@@ -44,6 +44,8 @@ if command -v mpiexec > /dev/null && [ "${RANKS:-2}" -gt 1 ]; then
     --benchmark_out="$out/step_t1_r${RANKS:-2}.json" >&2
 fi
 load_after=$(cut -d' ' -f1-3 /proc/loadavg)
+# Google Benchmark records the executable's absolute path: keep only its path under the build folder
+sed -i -E 's#^(    "executable": ")[^"]*/(bench/bench_[a-z]+)",#\1build/\2",#' "$out"/*.json
 
 /usr/bin/python3 "$here/support/make_results.py" "$out" "$here/RESULTS.md" \
   --model "$(lscpu | sed -n 's/^Model name: *//p' | head -1)" --cores "$(nproc)" \

@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
-# Issue 11's figures for docs/REPRODUCTION.md, one panel per paper figure, from the campaign's run
+# The desk campaign's figures for docs/REPRODUCTION.md, one panel per paper figure, from the campaign's run
 # directories (tools/campaign_runs.sh). A panel whose runs are not all there is skipped with a note.
 #   usage: tools/campaign_figures.sh [OUT]   OUT: folder for the PNGs (default docs/figures/campaign)
-#   environment: RUNS (default /work/runs/campaign)
+#   environment: RUNS (default runs/campaign under the current directory, as tools/campaign_runs.sh)
 set -uo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-runs=${RUNS:-/work/runs/campaign}
+runs=${RUNS:-$PWD/runs/campaign}
 out=${1:-$root/docs/figures/campaign}
 plot="/usr/bin/python3 $root/tools/eulerfsi_plot.py"
 mkdir -p "$out"

@@ -1,14 +1,15 @@
 #!/usr/bin/env bash
-# Issue 11's campaign: the cases/desk runs (the reference map, 8 cells per d, Lx = 2), one after
+# The desk campaign: the cases/desk runs (the reference map, 8 cells per d, Lx = 2), one after
 # another on one core, checkpointed; the same command continues a run from its checkpoint (or
-# extends a finished one when T_END is raised). Runs live outside the repo (RUNS).
+# extends a finished one when T_END is raised). Each run gets its own folder under RUNS.
 #   usage: tools/campaign_runs.sh STEM [STEM ...]   STEM: a cases/desk file name without .toml, or "list"
-#   environment: BIN (default build/eulerfsi), RUNS (default /work/runs/campaign), NICE (default 10),
+#   environment: BIN (default build/eulerfsi), RUNS (default runs/campaign under the current
+#                directory; runs/ is ignored by git), NICE (default 10),
 #                T_END (default: the case file's time.t_end)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 bin=${BIN:-$root/build/eulerfsi}
-runs=${RUNS:-/work/runs/campaign}
+runs=${RUNS:-$PWD/runs/campaign}
 nice_level=${NICE:-10}
 
 if [ "${1:-}" = list ] || [ $# = 0 ]; then

@@ -29,7 +29,7 @@ def parse_args(argv):
     p.add_argument("--pipe-radius", type=float, default=0.5, help="radius of the drawn pipe (domain units)")
     p.add_argument("--spacing", type=float, default=2.5, help="distance along x between the snapshots")
     p.add_argument("--color", choices=["speed", "energy"], default="speed",
-                   help="colour the surface by |u| or by the elastic energy density (runs since session 6)")
+                   help="colour the surface by |u| or by the elastic energy density")
     return p.parse_args(argv)
 
 
@@ -66,7 +66,7 @@ def main(argv):
         sys.exit(f"eulerfsi_render: {xdmf} not found (a run writes it when output.fields_every > 0)")
     reader = pv.XDMFReader(FileNames=[xdmf])
     if args.color == "energy" and "elastic_energy" not in reader.CellArrayStatus.Available:
-        sys.exit("eulerfsi_render: this run's snapshots have no elastic_energy field (written since session 6)")
+        sys.exit("eulerfsi_render: this run's snapshots have no elastic_energy field: use --color speed")
     reader.CellArrayStatus = ["psi", "velocity"] + (["elastic_energy"] if args.color == "energy" else [])
     times = chosen_times(list(reader.TimestepValues), args.times)
     view = pv.CreateView("RenderView")

@@ -23,7 +23,7 @@ RESOLUTIONS = {
     "paper": dict(length=3.0, cells=(720, 240, 240), every=100, fields_every=50000, checkpoint_every=5000, cfl=0.2,
                   model="paper",
                   note="paper resolution: 240 cells across the pipe, 48 per particle diameter"),
-    # What issue 11's campaign runs on a 2-core desk: 8 cells per particle diameter (40 across the
+    # What the desk campaign runs on a 2-core desk: 8 cells per particle diameter (40 across the
     # pipe) with the reference map. The paper's model smears under rotation at this resolution (a
     # sphere in rigid rotation at 8 cells per diameter reads D = 0.02 after one radian), the
     # reference map does not (D 3.5e-7 after 10 rad) and agrees with itself between 8 and 12 cells
@@ -36,37 +36,32 @@ RESOLUTIONS = {
 }
 
 
-# What the desk runs cost here: (time reached, wall seconds summed over restarts, on what). The
-# EPYC figures are session 5's (/work/runs/campaign/wall_time.py on the logs of that VM), the Xeon
-# ones session 10's (each run's config.resolved.toml to summary.json times, one run to t = 60).
-_XEON = "core of a 2-core Intel Xeon VM (AVX-512) beside a second run and CI, session 10 code"
-_XEON11 = "core of a 2-core Intel Xeon VM (AVX-512) beside a second run and the test suite or CI, session 11 code"
-_XEON12 = "core of a 2-core Intel Xeon VM (AVX-512) beside the test suite, session 11 code"
-_XEON12P = ("core of a 2-core Intel Xeon VM (AVX-512) beside the test suite, session 11 code; stopped for a few\n"
-            "# minutes while benchmarks ran, so an upper bound")
-_XEON12R = ("core of a 2-core Intel Xeon VM (AVX-512) beside a second run or CI, session 12 code; the\n"
-            "# campaign ran it on to t = 60")
-DESK_MEASURED = {  # case: (t reached, wall seconds, where)
-    "re200_we4_r0.2828_visc1": (60.0, 411, _XEON11),
-    "re200_we0.5_r0.2828_visc1": (60.0, 1022, _XEON11),
-    "re200_we0.125_r0.2828_visc1": (60.0, 736, _XEON11),
-    "re100_we4_r0.2828_visc1": (60.0, 522, _XEON11),
-    "re100_we0.5_r0.2828_visc1": (60.0, 1631, _XEON11),
-    "re400_we2_r0.2828_visc1": (60.0, 405, _XEON12),
-    "re400_we0.25_r0.2828_visc1": (60.0, 822, _XEON12P),
-    "re100_we0.125_r0.2828_visc1": (60.0, 1041, _XEON12P),
-    # run again to t = 20 for the time (the campaign's runs to t = 60 were made in legs)
-    "re400_we4_r0.2828_visc1": (20.0, 108, _XEON12R),
-    "re400_we0.5_r0.2828_visc1": (20.0, 148, _XEON12R),
-    "re400_we1_r0.2828_visc1": (20.0, 130, _XEON12R),
-    "re400_we0.125_r0.2828_visc1": (20.0, 208, _XEON12R),
-    "appendix_re400_we0.0625_r0.2828_visc1": (20.0, 259, _XEON12R),
-    "re400_we1_r0.0544_visc1": (20.0, 203, _XEON12R),
-    "re400_we1_r0.7487_visc1": (20.0, 114, _XEON12R),
-    "re400_we1_r0.2828_visc1_rest": (20.0, 231, _XEON12R),
-    "re400_we4_r0.2828_visc0.3": (20.0, 346, _XEON12R),
-    "re400_we4_r0.2828_visc3": (20.0, 116, _XEON12R),
-    "appendix_re400_we0.03125_r0.2828_visc1": (20.0, 384, _XEON12R),
+# What a desk run costs: (time reached, wall seconds summed over restarts) on one core of a 2-core
+# Intel Xeon VM with AVX-512, each run sharing the machine with a second run or the test suite (so
+# the figures are upper bounds); wall seconds from each run's config.resolved.toml to its
+# summary.json.
+_CPU = "one core of a 2-core Intel Xeon VM (AVX-512), shared with a second job: an upper bound"
+DESK_MEASURED = {  # case: (t reached, wall seconds)
+    "re200_we4_r0.2828_visc1": (60.0, 411),
+    "re200_we0.5_r0.2828_visc1": (60.0, 1022),
+    "re200_we0.125_r0.2828_visc1": (60.0, 736),
+    "re100_we4_r0.2828_visc1": (60.0, 522),
+    "re100_we0.5_r0.2828_visc1": (60.0, 1631),
+    "re400_we2_r0.2828_visc1": (60.0, 405),
+    "re400_we0.25_r0.2828_visc1": (60.0, 822),
+    "re100_we0.125_r0.2828_visc1": (60.0, 1041),
+    # timed over t = 0-20 in one leg
+    "re400_we4_r0.2828_visc1": (20.0, 108),
+    "re400_we0.5_r0.2828_visc1": (20.0, 148),
+    "re400_we1_r0.2828_visc1": (20.0, 130),
+    "re400_we0.125_r0.2828_visc1": (20.0, 208),
+    "appendix_re400_we0.0625_r0.2828_visc1": (20.0, 259),
+    "re400_we1_r0.0544_visc1": (20.0, 203),
+    "re400_we1_r0.7487_visc1": (20.0, 114),
+    "re400_we1_r0.2828_visc1_rest": (20.0, 231),
+    "re400_we4_r0.2828_visc0.3": (20.0, 346),
+    "re400_we4_r0.2828_visc3": (20.0, 116),
+    "appendix_re400_we0.03125_r0.2828_visc1": (20.0, 384),
 }
 
 
@@ -87,16 +82,19 @@ def case_text(res, re, we, r0, visc, rest, title):
     yc = zc = r / math.sqrt(2.0)
     name = case_name(re, we, r0, visc, rest, title.startswith("Appendix"))
     start = "fluid and particle start at rest" if rest else "the particle starts at rest in the developed Poiseuille flow"
-    measured = ""
     if res == "desk" and name in DESK_MEASURED:
-        t, wall, where = DESK_MEASURED[name]
-        measured = (f"# Run here (campaign, docs/REPRODUCTION.md): to t = {t:g} in {wall / 60:.0f} min of wall time on one\n"
-                    f"# {where} ({wall / t:.1f} s per time unit).\n")
+        t, wall = DESK_MEASURED[name]
+        cost = (f"# Cost: {wall / t:.1f} core seconds per time unit (D / U_b), over t = 0-{t:g}, on\n"
+                f"# {_CPU}.\n")
+    else:
+        cells = nx * ny * nz
+        cost = (f"# Cost: not measured at this resolution ({cells:,} cells); bench/RESULTS.md gives the cost of\n"
+                f"# a step per cell.\n")
     return f"""# {title}
 # {p['note']}.
 # Alghalibi, Rosti & Brandt (2019): Re = {re}, We = {we:g}, r0/R = {r0}, mu_s/mu_f = {visc:g};
 # {start}.
-{measured}[domain]
+{cost}[domain]
 length = [{p['length']}, 1.0, 1.0]
 cells = [{nx}, {ny}, {nz}]
 geometry = "pipe"

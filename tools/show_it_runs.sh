@@ -1,16 +1,16 @@
 #!/usr/bin/env bash
-# Issue 9's show-it set: Re = 100, r0/R = 0.2828, released at rest, grid following the particle,
-# Lx = 2, the paper's sharp wall, CFL 0.2, to t = 20, the map with solid.map_margin = 0.5 (the
-# default of sessions 6-10); both models at 8 and 12 cells per d, We = 4
-# and 0.125; the map also at 16 cells per d (the convergence check of docs/REFERENCE_MAP.md). Runs
-# live outside the repo (RUNS, default /work/runs/show) and are checkpointed; the
-# same command continues a run from its checkpoint.
+# The model comparison of docs/REFERENCE_MAP.md: Re = 100, r0/R = 0.2828, released at rest, grid
+# following the particle, Lx = 2, the paper's sharp wall, CFL 0.2, to t = 20, the map with
+# solid.map_margin = 0.5; both models at 8 and 12 cells per d, We = 4 and 0.125; the map also at
+# 16 cells per d (the convergence check). Each run gets its own folder under RUNS (default
+# runs/show under the current directory; runs/ is ignored by git) and is checkpointed; the same
+# command continues a run from its checkpoint.
 #   usage: tools/show_it_runs.sh NAME [NAME ...]   NAME: {paper,map}{8,12}_we{4,0.125}, map16_we{4,0.125}, or "list"
 #   environment: BIN (default build/eulerfsi), RUNS, NICE (default 10), T_END (default 20)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 bin=${BIN:-$root/build/eulerfsi}
-runs=${RUNS:-/work/runs/show}
+runs=${RUNS:-$PWD/runs/show}
 nice_level=${NICE:-10}
 t_end=${T_END:-20}
 
@@ -22,7 +22,7 @@ case_args() {  # NAME -> the case file and --set arguments of that run
   if [ "$we" = 4 ]; then echo -n "$root/cases/validation/migration_soft.toml"
   else echo -n "$root/cases/validation/migration_stiff.toml"; fi
   echo -n " --set flow.pipe_wall=\"sharp\" --set time.t_end=$t_end --set output.checkpoint_every=200"
-  # the set was run with the map carried from half a cell inside the surface (sessions 6-10)
+  # the map carried from half a cell inside the surface (margin 0.5), as the comparison was run
   [ "$model" = map ] && echo -n " --set solid[0].model=\"reference-map\" --set solid[0].map_margin=0.5"
   [ "$cells" = 12 ] && echo -n " --set domain.cells=[120,60,60]"
   [ "$cells" = 16 ] && echo -n " --set domain.cells=[160,80,80]"

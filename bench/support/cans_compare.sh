@@ -24,8 +24,8 @@
 # ratio eulerfsi / CaNS on 1 core and on 2 (the best eulerfsi layout against CaNS on 2 ranks).
 #
 # Usage: bench/support/cans_compare.sh [CANS_DIR]
-#   CANS_DIR (argument or env, default /work/cans): the CaNS checkout or the folder holding it as
-#            CaNS/; the executable is looked for at build/cans or run/cans under it. Build CaNS
+#   CANS_DIR (argument or env, default ./cans under the current directory): the CaNS checkout or
+#            the folder holding it as CaNS/; the executable is looked for at build/cans or run/cans under it. Build CaNS
 #            there first with its own Makefile (double precision, FFLAGS_OPT=1 i.e. -O3, GPU=0):
 #              make libs && make      (in the CaNS checkout, with 2decomp-fft under dependencies/)
 #   BUILD    eulerfsi build folder (default build/; built with ci/build, not rebuilt here)
@@ -46,7 +46,7 @@
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
-cans_dir=${1:-${CANS_DIR:-/work/cans}}
+cans_dir=${1:-${CANS_DIR:-$PWD/cans}}
 build=${BUILD:-$root/build}
 nstep=${NSTEP:-100}
 warm=${WARM:-10}

@@ -148,7 +148,7 @@ def main():
         text = text[: text.index(BEGIN)] + block + text[text.index(END) + len(END):]
     else:
         text = ("# Benchmark results\n\nProduced by `bench/run_benchmarks.sh` (numbers between the markers are "
-                "rewritten on every run; the interpretation below is not).\n\n" + block + "\n\n## Interpretation\n\n"
+                "rewritten on every run; the notes below are not).\n\n" + block + "\n\n## Notes\n\n"
                 "(to be written)\n")
     with open(args.results_md, "w") as f:
         f.write(text)

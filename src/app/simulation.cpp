@@ -392,7 +392,7 @@ class Simulation {
     return std::min(done, 1.0);
   }
 
-  // ETA from this session's pace (a restarted run starts counting at its checkpoint).
+  // ETA from this process's pace (a restarted run starts counting at its checkpoint).
   void print_progress(double dt, std::chrono::steady_clock::time_point start, double done_at_start) const {
     if (!comm_.root()) return;
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -416,7 +416,7 @@ class Simulation {
   FlowDiagnostics last_;
   Field3 psi_total_, centred_[3], energy_;  // field snapshots
   size_t next_shape_ = 0;
-  double dt_reference_ = 0.0;  // the first stable step of this session
+  double dt_reference_ = 0.0;  // the first stable step of this process (since the start or restart)
   double t_ = 0.0;
   long step_ = 0;
 };

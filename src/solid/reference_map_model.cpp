@@ -17,9 +17,8 @@ namespace {
 
 // Extrapolation sweeps: the WENO5 stencil of a solid cell reads 3 cells outward, and the central
 // differences of psi and B at level 3 one cell beyond it, so q is known 3 cells beyond the body
-// (levels 2-4). (Sessions 3-11 made 4 sweeps and derived psi and B at level 4 too, where psi is 0:
-// the fourth sweep, the largest shell, only fed stencils whose results were thrown away; 200 steps
-// of a pipe particle changed by 5e-9 in r/R and 1e-7 in D, docs/REFERENCE_MAP.md.)
+// (levels 2-4). A fourth sweep would only feed stencils at level 4, where psi is 0 and the results
+// are not used (with it, 200 steps of a pipe particle differ by 5e-9 in r/R and 1e-7 in D).
 constexpr int kBand = 3;
 // psi and B are derived up to level 3 (Chebyshev distance 2 from the solid): a level-4 cell is at
 // least 2 cells from the surface, beyond psi's half-width (kHalfWidthCells), so psi = 0 there and

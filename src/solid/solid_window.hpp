@@ -1,7 +1,7 @@
 #pragma once
 // Where a body's fields are stored: a window of the grid that holds the body, the band its
-// extension fills and the reach of every stencil read there, and that follows the body (issue 8:
-// a particle filling 1 % of the pipe carried ~24 whole-grid fields). Outside the window a field
+// extension fills and the reach of every stencil read there, and that follows the body, so that a
+// particle filling 1 % of the pipe does not carry ~24 whole-grid fields. Outside the window a field
 // holds one value ("outside": psi 0, B = I, the map unknown), which no kernel reads.
 //
 // The window is one box of the global grid (x in global storage indices), cut by each rank's slab:

@@ -145,16 +145,16 @@ TEST(ShearParticle, DISABLED_DeformationBecomesSteady) {
 // from the carried reference map, so tank-treading does not smear it: the error budget above
 // loses its transport part. Budget relative to theory at Ca = 0.1: theory remainder 3.1 % (the
 // known tilt term; doubled for neo-Hookean terms: 6.25 % is the bound, the measured value is what
-// the issue's 5 % reflects), confinement and images 3 %, inertia 1 %; the issue asks for D within
+// the 5 % below reflects), confinement and images 3 %, inertia 1 %; so D within
 // 5 % and the inclination within 0.03 rad of 0.660 (0.03 = the O(Ca^3) remainder, (3+2 lambda)^3
 // Ca^3 / 48 ~ 3e-3, plus the 3 % confinement on the tilt 0.125: 4e-3, plus discretisation).
 // Steadiness: D at strain 4 within 2 % of D at strain 3 (the transient, exp(-3 / 0.25) = 6e-6, is
-// gone; the issue's strain 10 against 3 was measured with `eulerfsi run`, docs/REFERENCE_MAP.md).
+// gone; strain 10 against 3 is measured with `eulerfsi run` in docs/REFERENCE_MAP.md).
 // Both reference-map shear tests carry the map from half a cell inside the surface
 // (solid.map_margin = 0.5), which stops the label drift of this low-Re shear; the default (0) is
 // what inertial pipe runs need (tests/unit/test_stiff_release.cpp) and reads D 0.1313 (+5.1 %),
-// inclination 0.6627 here (session 11). Measured with the margin (session 6, the shape's moments
-// extrapolated to zero edge width): D 0.1264 (+1.1 %), inclination 0.6688, D 0.1261 -> 0.1270.
+// inclination 0.6627 here. Measured with the margin (the shape's moments extrapolated to zero edge
+// width): D 0.1264 (+1.1 %), inclination 0.6688, D 0.1261 -> 0.1270.
 TEST(ShearParticle, ReferenceMapMatchesTheoryAndStaysSteady) {
   ASSERT_FALSE(case_file().empty()) << "EULERFSI_TEST_DATA is not set (CTest sets it to the tests/ directory)";
   const ShearResult r =
@@ -169,12 +169,12 @@ TEST(ShearParticle, ReferenceMapMatchesTheoryAndStaysSteady) {
 }
 
 // A stiff particle, Ca = 0.0125 (We = 0.1): theory D = 0.0156, inclination 0.770. The paper model
-// reads D 0.0175 at strain 1, rising, with the axis past pi/4 (docs/STATUS.md). Bounds from the
-// issue: D within 20 % (at 8 cells per diameter D = 0.0156 is a 1.2 % elongation, 0.05 cells of
+// reads D 0.0175 at strain 1, rising, with the axis past pi/4 (docs/REFERENCE_MAP.md). Bounds:
+// D within 20 % (at 8 cells per diameter D = 0.0156 is a 1.2 % elongation, 0.05 cells of
 // the radius), inclination within 0.05 rad. tau = 2.5 Ca = 0.031 strain: strains [1, 1.5] are far
-// past the transient. Fails without either of two changes (session 6, docs/REFERENCE_MAP.md):
-// with the map carried up to the surface (map_margin = 0, the default) the surface turned 0.087 rad
-// per unit strain away from the axes B gave (0.847 over the window, 0.845 in session 11; 0.826 at
+// past the transient. Fails without either of two choices (docs/REFERENCE_MAP.md):
+// with the map carried up to the surface (map_margin = 0, the default) the surface turns 0.087 rad
+// per unit strain away from the axes B gives (0.845-0.847 over the window; 0.826 at
 // map_margin = 0.25, 0.787 at 0.375; 12 cells per d: 0.034 per strain, 0.810), and
 // psi's moments with the psi >= 0.05 cut read an exact ellipsoid's D 19 % low at this size (0.0124).
 // Measured: D 0.0158 (+1 %), inclination 0.786.

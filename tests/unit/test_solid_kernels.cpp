@@ -221,7 +221,7 @@ std::vector<double> rotating_sphere_D(int N, const std::vector<double>& angles) 
 
 }  // namespace
 
-// The error behind the drift of a tank-treading particle (docs/STATUS.md): the flux form diffuses
+// The error behind the drift of a tank-treading particle (docs/REFERENCE_MAP.md): the flux form diffuses
 // psi only along the directions the velocity has, so a rotating sphere looks stretched in its
 // plane of rotation. It must vanish under refinement: a discontinuity under WENO5 converges like
 // h^(3/4) in L1 (Harten's estimate, see SphereKeepsVolumeAndShape), ratio 0.59 per halving; we
