@@ -34,7 +34,7 @@ const std::vector<Section>& schema() {
       {"time", {"cfl", "dt", "t_end", "max_steps", "implicit_viscosity"}},
       {"solver", {"fft_planning"}},
       {"output", {"dir", "every", "fields_every", "profiles_every", "checkpoint_every", "shape_times"}},
-      {"solid", {"shape", "diameter", "center", "thickness", "We", "viscosity_ratio", "initial_velocity", "sharpening", "model", "map_margin", "b_extension"}},
+      {"solid", {"shape", "diameter", "center", "thickness", "We", "viscosity_ratio", "initial_velocity", "sharpening", "model", "map_margin", "b_extension", "constraint"}},
   };
   return s;
 }
@@ -61,7 +61,9 @@ const std::vector<std::pair<const char*, InitialSolidVelocity>> kSolidVelocities
     {"rest", InitialSolidVelocity::Rest}, {"fluid", InitialSolidVelocity::Fluid}};
 
 const std::vector<std::pair<const char*, SolidModelKind>> kSolidModels{
-    {"paper", SolidModelKind::Paper}, {"reference-map", SolidModelKind::ReferenceMap}};
+    {"paper", SolidModelKind::Paper}, {"reference-map", SolidModelKind::ReferenceMap}, {"rigid", SolidModelKind::Rigid}};
+const std::vector<std::pair<const char*, SolidConstraint>> kSolidConstraints{
+    {"none", SolidConstraint::None}, {"fixed", SolidConstraint::Fixed}, {"radial", SolidConstraint::Radial}};
 
 // only what a case file may ask for: WisdomOnly is for checking stored wisdom
 const std::vector<std::pair<const char*, FftPlanning>> kFftPlannings{{"estimate", FftPlanning::Estimate},
@@ -614,6 +616,16 @@ void read_solids(const Reader& r, const toml::table& root, const DomainConfig& d
       r.fail(s + ".b_extension", s + ".b_extension = false: applies to " + s +
                                      ".model = \"paper\" only; the reference map derives B from xi (remove it)");
 
+    r.get(t, s, "constraint", c.constraint, kSolidConstraints);
+    if (c.model == SolidModelKind::Rigid && c.shape != SolidShape::Sphere)
+      r.fail(s + ".model", s + ".model = \"rigid\": a rigid body is a sphere (shape = \"sphere\")");
+    if (c.model == SolidModelKind::Rigid && c.sharpening > 0)
+      r.fail(s + ".sharpening", s + ".sharpening = " + fmt_double(c.sharpening) + ": applies to " + s +
+                                    ".model = \"paper\" only; a rigid body's psi never smears (remove it)");
+    if (c.model != SolidModelKind::Rigid && c.constraint != SolidConstraint::None)
+      r.fail(s + ".constraint", s + ".constraint = " + toml_str(to_string(c.constraint)) + ": a held body is " + s +
+                                    ".model = \"rigid\" (soft bodies are free: constraint = \"none\")");
+
     if (c.shape == SolidShape::Layer) {
       if (d.geometry != Geometry::Channel && d.geometry != Geometry::Couette)
         r.fail(s + ".shape", s + ".shape = \"layer\": a layer spans the walls of a channel; it needs domain.geometry = "
@@ -706,6 +718,7 @@ const char* to_string(PipeWall w) { return spelling(kPipeWalls, w); }
 const char* to_string(SolidShape s) { return spelling(kShapes, s); }
 const char* to_string(InitialSolidVelocity v) { return spelling(kSolidVelocities, v); }
 const char* to_string(SolidModelKind m) { return spelling(kSolidModels, m); }
+const char* to_string(SolidConstraint c) { return spelling(kSolidConstraints, c); }
 const char* to_string(FftPlanning p) { return spelling(kFftPlannings, p); }
 
 CaseConfig parse_case_string(const std::string& toml_text, const std::vector<std::string>& overrides,
@@ -790,7 +803,8 @@ std::string to_toml(const CaseConfig& c) {
        << "sharpening = " << fmt_double(s.sharpening) << "\n"
        << "model = " << toml_str(to_string(s.model)) << "\n"
        << "map_margin = " << fmt_double(s.map_margin) << "\n"
-       << "b_extension = " << (s.b_extension ? "true" : "false") << "\n";
+       << "b_extension = " << (s.b_extension ? "true" : "false") << "\n"
+       << "constraint = " << toml_str(to_string(s.constraint)) << "\n";
   }
   return os.str();
 }

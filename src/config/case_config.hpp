@@ -73,7 +73,10 @@ enum class InitialSolidVelocity { Rest, Fluid };
 // How a body's shape and deformation are carried (src/solid/solid_model.hpp):
 //   Paper: psi and B advected with WENO5 (the paper's method; needs ~48 cells per diameter)
 //   ReferenceMap: the reference position xi advected; psi and B derived from it (Kamrin et al. 2012)
-enum class SolidModelKind { Paper, ReferenceMap };
+enum class SolidModelKind { Paper, ReferenceMap, Rigid };
+// What holds a body: nothing (free), everything (no translation, no rotation), or its position in
+// the cross-section (y, z held; free along x and free to rotate). src/solid/rigid_model.hpp.
+enum class SolidConstraint { None, Fixed, Radial };
 
 struct SolidConfig {
   SolidShape shape = SolidShape::Sphere;
@@ -87,6 +90,7 @@ struct SolidConfig {
   bool b_extension = true;       // paper model: B extended from the solid over a band, I beyond (false: the paper's B)
   InitialSolidVelocity initial_velocity = InitialSolidVelocity::Fluid;
   SolidModelKind model = SolidModelKind::Paper;
+  SolidConstraint constraint = SolidConstraint::None;
 };
 
 struct CaseConfig {
@@ -119,6 +123,7 @@ std::string to_toml(const CaseConfig& cfg);
 
 const char* to_string(Geometry g);
 const char* to_string(PipeWall w);
+const char* to_string(SolidConstraint c);
 const char* to_string(InitialFlow f);
 const char* to_string(SolidShape s);
 const char* to_string(InitialSolidVelocity v);

@@ -1,5 +1,7 @@
 #include "solid/particle_diagnostics.hpp"
 
+#include <array>
+
 #include <algorithm>
 #include <cmath>
 
@@ -130,6 +132,8 @@ std::vector<ParticleState> ParticleTracker::measure(const SolidPhase& solids, co
     const SolidBody& body = solids.bodies()[n];
     const Box box = body_box(body, grid_);
     ParticleState s;
+    const std::array<double, 3> hold = body.model->holding_force();
+    for (int d = 0; d < 3; ++d) s.hold_force[d] = hold[d];
     double whole[2];
     kernels::body_x_momentum(body.psi, flow.vel, box, whole);
     sum_all(comm_, whole);
@@ -241,7 +245,7 @@ const std::vector<std::string>& particle_columns() {
   static const std::vector<std::string> cols = {
       "step", "t", "solid", "xc", "yc", "zc", "r_over_R", "up", "vp", "wp", "volume", "taylor_D", "angle",
       "F_r", "F_r_pressure", "F_r_inertia", "F_r_viscous", "F_r_elastic", "P_r",
-      "F_r_paper", "F_r_paper_inertia", "F_r_paper_viscous", "F_r_paper_elastic"};
+      "F_r_paper", "F_r_paper_inertia", "F_r_paper_viscous", "F_r_paper_elastic", "hold_Fx", "hold_Fy", "hold_Fz"};
   return cols;
 }
 
@@ -249,7 +253,7 @@ std::vector<double> particle_row(long step, double t, int body, const ParticleSt
   return {double(step), t, double(body), s.centre[0], s.centre[1], s.centre[2], s.r_over_R, s.velocity[0],
           s.velocity[1], s.velocity[2], s.volume, s.taylor_D, s.angle, s.force_total(), s.force[0], s.force[1],
           s.force[2], s.force[3], s.momentum_r, s.force_paper_total(), s.force_paper[1], s.force_paper[2],
-          s.force_paper[3]};
+          s.force_paper[3], s.hold_force[0], s.hold_force[1], s.hold_force[2]};
 }
 
 }  // namespace eulerfsi

@@ -29,6 +29,8 @@ struct ParticleState {
   // The paper's eq. (force): pressure (as above), -int psi div(u u) at fixed laboratory points,
   // int psi mu_s div(2E), int psi G div B; their sum is int psi du_r/dt, not dP_r/dt.
   double force_paper[4] = {0, 0, 0, 0};
+  // The force that holds a constrained body (solid.constraint), mean over the last step; 0 when free.
+  double hold_force[3] = {0, 0, 0};
   double force_total() const { return force[0] + force[1] + force[2] + force[3]; }
   double force_paper_total() const { return force_paper[0] + force_paper[1] + force_paper[2] + force_paper[3]; }
 };

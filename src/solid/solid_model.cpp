@@ -2,6 +2,7 @@
 
 #include "solid/paper_model.hpp"
 #include "solid/reference_map_model.hpp"
+#include "solid/rigid_model.hpp"
 
 namespace eulerfsi {
 
@@ -16,6 +17,8 @@ std::shared_ptr<SolidModel> make_solid_model(const SolidConfig& solid, const Cas
   switch (solid.model) {
     case SolidModelKind::ReferenceMap:
       return std::make_shared<ReferenceMapModel>(solid, cfg, grid, bc, comm);
+    case SolidModelKind::Rigid:
+      return std::make_shared<RigidModel>(solid, cfg, grid, comm);
     case SolidModelKind::Paper:
       break;
   }

@@ -7,8 +7,11 @@
 //   paper_model.*          psi and B advected with WENO5 (Alghalibi, Rosti & Brandt 2019)
 //   reference_map_model.*  the reference map xi advected; psi = H(-phi0(xi)), B = F F^T with
 //                          F = (grad xi)^-1 (Kamrin, Rycroft & Nave 2012)
+//   rigid_model.*          a rigid sphere: psi from its centre, B = I, the velocity inside made
+//                          rigid after each projection (Sharma & Patankar 2005)
 // A third model (say Mooney-Rivlin through the reference map, or a viscoelastic shell) derives
 // from SolidModel and is added to make_solid_model() and to SolidModelKind in the case config.
+#include <array>
 #include <map>
 #include <memory>
 #include <string>
@@ -74,6 +77,14 @@ class SolidModel {
   // buffers): the elastic force's shear stresses are written there (kernels::shear_stress), after
   // the model's own use within its substep (the map's edge geometry).
   virtual kernels::Scratch3 scratch() = 0;
+  // Whether the body has an elastic stress psi G (B - I) (a rigid body has none).
+  virtual bool elastic() const { return true; }
+  // A model that acts on the velocity after each projection (the rigid body): constrain_velocity()
+  // is then called, and the flow projected again.
+  virtual bool constrains_velocity() const { return false; }
+  virtual void constrain_velocity(SolidBody&, const kernels::Velocity&, double /*dt*/, int /*substep*/) {}
+  // The mean force over the last step that holds the body where its constraint says (0 when free).
+  virtual std::array<double, 3> holding_force() const { return {0.0, 0.0, 0.0}; }
 };
 
 std::shared_ptr<SolidModel> make_solid_model(const SolidConfig& solid, const CaseConfig& cfg, const Grid& grid,

@@ -90,6 +90,7 @@ Box SolidPhase::elastic_faces(const SolidBody& body) const { return body.model->
 template <class AddForce>
 void SolidPhase::for_each_body_faces(const AddForce& add) const {
   for (const auto& body : bodies_) {
+    if (!body.model->elastic()) continue;
     const Box faces = elastic_faces(body);
     if (!faces.empty()) add(body, faces);
   }
@@ -114,14 +115,26 @@ void SolidPhase::add_elastic_force_to_predictor(const kernels::Velocity& rhs, co
 
 Box SolidPhase::elastic_force_region() const {
   Box region{{0, 0, 0}, {0, 0, 0}};
-  for (const auto& body : bodies_) region = bounding_box(region, elastic_faces(body));
+  for (const auto& body : bodies_)
+    if (body.model->elastic()) region = bounding_box(region, elastic_faces(body));
   return region;
 }
 
 double SolidPhase::max_wave_speed() const {
   double c = 0.0;
-  for (const auto& body : bodies_) c = std::max(c, std::sqrt(body.G));
+  for (const auto& body : bodies_)
+    if (body.model->elastic()) c = std::max(c, std::sqrt(body.G));
   return c;
+}
+
+bool SolidPhase::constrain_velocity(const kernels::Velocity& vel, double dt, int substep) {
+  bool any = false;
+  for (auto& body : bodies_) {
+    if (!body.model->constrains_velocity()) continue;
+    body.model->constrain_velocity(body, vel, dt, substep);
+    any = true;
+  }
+  return any;
 }
 
 // psi, B and the model's stored fields of every body, named "solid<n>_<name>".

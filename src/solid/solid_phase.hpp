@@ -46,6 +46,7 @@ class SolidPhase final : public SolidCoupling {
                                       const kernels::PredictorTerms& terms) const override;
   Box elastic_force_region() const override;
   double max_wave_speed() const override;
+  bool constrain_velocity(const kernels::Velocity& vel, double dt, int substep) override;
 
   // Every field a step starts from, "solid<n>_<name>": psi, B and whatever the model adds, as they
   // are stored (a window, and its value outside) for writing; as fresh whole-slab fields to read

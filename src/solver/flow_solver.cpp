@@ -217,7 +217,13 @@ void FlowSolver::advance(double t, double dt, SolidCoupling* solids) {
     }
     // (iv) projection, (v) with a constant flow rate its uniform correction: the mean pressure
     // gradient times alpha dt
-    const double du = project(alpha_dt, {state_.p_step, Rk3::alpha(s), s == 0});
+    double du = project(alpha_dt, {state_.p_step, Rk3::alpha(s), s == 0});
+    // rigid bodies: the velocity inside made rigid, then divergence-free again (its pressure, the
+    // rigidity's, joins the step's)
+    if (solids && solids->constrain_velocity(vel, dt, s)) {
+      bc_.fill_divergence_stencil(vel);
+      du += project(alpha_dt, {state_.p_step, Rk3::alpha(s), false});
+    }
     if (impose_flow_rate_) dpdx_step -= du / dt;
     bc_.fill_velocity(vel, t_next);
   }

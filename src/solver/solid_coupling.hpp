@@ -29,6 +29,9 @@ class SolidCoupling {
   virtual Box elastic_force_region() const = 0;
   // Fastest elastic shear-wave speed sqrt(G) among the bodies (enters the CFL condition).
   virtual double max_wave_speed() const = 0;
+  // After the projection (iv): bodies that constrain the velocity (rigid ones) act on it; true if
+  // one did, and the flow must be projected again.
+  virtual bool constrain_velocity(const kernels::Velocity&, double /*dt*/, int /*substep*/) { return false; }
 };
 
 }  // namespace eulerfsi

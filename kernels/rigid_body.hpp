@@ -1,0 +1,133 @@
+#pragma once
+// A rigid sphere in the one continuum (src/solid/rigid_model.hpp): its volume fraction from its
+// centre, the psi-weighted moments that give its rigid motion, and the rigid velocity blended into
+// the flow. Positions are relative to the centre c, with the minimum image along periodic
+// directions; the face of component D at (i, j, k) lies between cell (i, j, k) and the next cell
+// along D, psi there is the mean of the two.
+#include "core/compat.hpp"
+#include "core/launch.hpp"
+#include "core/types.hpp"
+#include "kernels/particle_moments.hpp"
+#include "kernels/reference_map.hpp"
+#include "kernels/solid_fields.hpp"
+
+namespace eulerfsi::kernels {
+
+struct RigidGeometry {
+  CellCentres xc;
+  double centre[3];
+  double period[3];  // 0 where not periodic
+  double radius;
+  double eps;  // half-width of psi's smoothed edge
+};
+
+// psi = H_eps(a - |x - c|) on every cell of `box` (ghosts included: psi is exact wherever it is
+// evaluated, so it needs no halo exchange).
+inline void rigid_sphere_psi(const WindowField& psi, const RigidGeometry& g, const Box& box) {
+  for_each_cell("eulerfsi::rigid::psi", box, KOKKOS_LAMBDA(int i, int j, int k) {
+    const double dx = detail::min_image(g.xc(0, i) - g.centre[0], g.period[0]);
+    const double dy = detail::min_image(g.xc(1, j) - g.centre[1], g.period[1]);
+    const double dz = detail::min_image(g.xc(2, k) - g.centre[2], g.period[2]);
+    psi(i, j, k) = smoothed_heaviside(g.radius - compat::sqrt(dx * dx + dy * dy + dz * dz), g.eps);
+  });
+}
+
+// The sums of the rigid-motion fit, each times dV:
+//   mass[D] = sum_faces psi_D, momentum[D] = sum_faces psi_D u_D,
+//   angular = sum_D sum_faces psi_D r x (u_D e_D),
+//   inertia = sum_cells psi (|r|^2 delta_ab - r_a r_b)   (XX, YY, ZZ, XY, XZ, YZ)
+struct RigidMoments {
+  enum { Count = 15 };
+  double mass[3], momentum[3], angular[3], inertia[kTensorComponents];
+};
+
+namespace detail {
+
+KOKKOS_INLINE_FUNCTION void face_offset(const RigidGeometry& g, int comp, int i, int j, int k, double r[3]) {
+  const int ix[3] = {i, j, k};
+  for (int d = 0; d < 3; ++d) {
+    const double x = g.xc(d, ix[d]) + (d == comp ? 0.5 * g.xc.h[d] : 0.0);
+    r[d] = min_image(x - g.centre[d], g.period[d]);
+  }
+}
+
+KOKKOS_INLINE_FUNCTION double face_psi(const WindowField& psi, int comp, int i, int j, int k) {
+  return 0.5 * (psi(i, j, k) + psi(i + (comp == 0), j + (comp == 1), k + (comp == 2)));
+}
+
+// One of RigidMoments' sums (what = its index in the struct's order).
+struct RigidMomentTerm {
+  WindowField psi;
+  Field3 u[3];
+  RigidGeometry g;
+  int what;
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k, double& acc) const {
+    if (what < 9) {
+      const int comp = what < 6 ? what % 3 : -1;
+      if (comp >= 0) {
+        const double p = face_psi(psi, comp, i, j, k);
+        acc += what < 3 ? p : p * u[comp](i, j, k);
+        return;
+      }
+      // angular momentum component a: sum over the two other components' faces
+      const int a = what - 6, b = (a + 1) % 3, c = (a + 2) % 3;  // (r x u)_a = r_b u_c - r_c u_b
+      double r[3];
+      face_offset(g, c, i, j, k, r);
+      acc += face_psi(psi, c, i, j, k) * r[b] * u[c](i, j, k);
+      face_offset(g, b, i, j, k, r);
+      acc -= face_psi(psi, b, i, j, k) * r[c] * u[b](i, j, k);
+      return;
+    }
+    const int t = what - 9;
+    const int ra[6] = {0, 1, 2, 0, 0, 1}, rb[6] = {0, 1, 2, 1, 2, 2};
+    const double r[3] = {min_image(g.xc(0, i) - g.centre[0], g.period[0]),
+                         min_image(g.xc(1, j) - g.centre[1], g.period[1]),
+                         min_image(g.xc(2, k) - g.centre[2], g.period[2])};
+    const double r2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
+    acc += psi(i, j, k) * ((t < 3 ? r2 : 0.0) - r[ra[t]] * r[rb[t]]);
+  }
+};
+
+}  // namespace detail
+
+// This rank's sums over the owned faces and cells of `box` (the caller MPI-sums them).
+inline RigidMoments rigid_moments(const WindowField& psi, const Velocity& vel, const RigidGeometry& g, double dv,
+                                  const Box& box) {
+  RigidMoments m{};
+  double* out[RigidMoments::Count];
+  for (int d = 0; d < 3; ++d) {
+    out[d] = &m.mass[d];
+    out[3 + d] = &m.momentum[d];
+    out[6 + d] = &m.angular[d];
+  }
+  for (int t = 0; t < kTensorComponents; ++t) out[9 + t] = &m.inertia[t];
+  for (int w = 0; w < RigidMoments::Count; ++w)
+    *out[w] = dv * detail::sum_over("eulerfsi::rigid::moments", box,
+                                    detail::RigidMomentTerm{psi, {vel.c[0], vel.c[1], vel.c[2]}, g, w});
+  return m;
+}
+
+// The rigid motion blended in by psi on every face of `box`, u_D <- u_D + psi_D ((U + w x r)_D - u_D)
+// (Sharma & Patankar 2005); returns this rank's impulse sum psi_D ((U + w x r)_D - u_D) dV per D:
+// zero for a free body (U and w are the psi-weighted fit), the constraint's impulse for a held one.
+inline void rigid_blend(const Velocity& vel, const WindowField& psi, const RigidGeometry& g, const double U[3],
+                        const double w[3], double dv, const Box& box, double impulse[3]) {
+  for (int comp = 0; comp < 3; ++comp) {
+    const Field3 u = vel.c[comp];
+    const double Uc = U[comp], w0 = w[0], w1 = w[1], w2 = w[2];
+    auto rigid = KOKKOS_LAMBDA(int i, int j, int k) {
+      double r[3];
+      detail::face_offset(g, comp, i, j, k, r);
+      const double wxr[3] = {w1 * r[2] - w2 * r[1], w2 * r[0] - w0 * r[2], w0 * r[1] - w1 * r[0]};
+      return detail::face_psi(psi, comp, i, j, k) * (Uc + wxr[comp] - u(i, j, k));
+    };
+    double j_sum = 0.0;
+    reduce_cells("eulerfsi::rigid::impulse", box, KOKKOS_LAMBDA(int i, int j, int k, double& acc) {
+      acc += rigid(i, j, k);
+    }, Kokkos::Sum<double>(j_sum));
+    impulse[comp] = dv * j_sum;
+    for_each_cell("eulerfsi::rigid::blend", box, KOKKOS_LAMBDA(int i, int j, int k) { u(i, j, k) += rigid(i, j, k); });
+  }
+}
+
+}  // namespace eulerfsi::kernels

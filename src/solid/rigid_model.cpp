@@ -1,0 +1,155 @@
+#include "solid/rigid_model.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "kernels/elastic_force.hpp"
+#include "kernels/reference_map.hpp"
+#include "solid/paper_model.hpp"
+#include "solver/rk3.hpp"
+
+namespace eulerfsi {
+
+namespace {
+
+// psi's smoothed edge: the reference map's half-width, so both models' spheres look alike
+constexpr double kHalfWidthCells = 1.5;
+
+double wrap(double x, double period) {
+  if (period <= 0.0) return x;
+  x = std::fmod(x, period);
+  return x < 0.0 ? x + period : x;
+}
+
+// x = A^-1 b for a symmetric 3x3 A given as (XX, YY, ZZ, XY, XZ, YZ), by cofactors.
+void solve_symmetric(const double a[6], const double b[3], double x[3]) {
+  const double m[3][3] = {{a[0], a[3], a[4]}, {a[3], a[1], a[5]}, {a[4], a[5], a[2]}};
+  const double c00 = m[1][1] * m[2][2] - m[1][2] * m[2][1], c01 = m[1][2] * m[2][0] - m[1][0] * m[2][2],
+               c02 = m[1][0] * m[2][1] - m[1][1] * m[2][0];
+  const double det = m[0][0] * c00 + m[0][1] * c01 + m[0][2] * c02;
+  if (!(std::fabs(det) > 0.0)) {
+    x[0] = x[1] = x[2] = 0.0;
+    return;
+  }
+  const double inv[3][3] = {{c00, m[0][2] * m[2][1] - m[0][1] * m[2][2], m[0][1] * m[1][2] - m[0][2] * m[1][1]},
+                            {c01, m[0][0] * m[2][2] - m[0][2] * m[2][0], m[0][2] * m[1][0] - m[0][0] * m[1][2]},
+                            {c02, m[0][1] * m[2][0] - m[0][0] * m[2][1], m[0][0] * m[1][1] - m[0][1] * m[1][0]}};
+  for (int r = 0; r < 3; ++r) x[r] = (inv[r][0] * b[0] + inv[r][1] * b[1] + inv[r][2] * b[2]) / det;
+}
+
+}  // namespace
+
+RigidModel::RigidModel(const SolidConfig& solid, const CaseConfig&, const Grid& grid, const Comm& comm)
+    : cfg_solid_(solid), grid_(grid), comm_(comm) {
+  for (int d = 0; d < 3; ++d) centre_[d] = solid.center[d];
+  centre_[0] = wrap(centre_[0], grid.length[0]);
+  for (int c = 0; c < 3; ++c) scratch_[c] = grid.make_field("rigid_scratch");
+}
+
+kernels::RigidGeometry RigidModel::geometry() const {
+  kernels::RigidGeometry g;
+  for (int d = 0; d < 3; ++d) {
+    g.xc.x0[d] = grid_.centre(d, 0);
+    g.xc.h[d] = grid_.h[d];
+    g.centre[d] = centre_[d];
+    g.period[d] = grid_.bc[d] == Boundary::Periodic ? grid_.length[d] : 0.0;
+  }
+  g.radius = 0.5 * cfg_solid_.diameter;
+  g.eps = kHalfWidthCells * std::fmax(grid_.h[0], std::fmax(grid_.h[1], grid_.h[2]));
+  return g;
+}
+
+// psi differs from 0 only within a + eps of the centre: its storage cells there (a whole direction
+// where the reach wraps around a periodic end), ghosts included; the active box is their owned part.
+void RigidModel::place(SolidBody& body) {
+  const kernels::RigidGeometry g = geometry();
+  const double reach = g.radius + g.eps;
+  Box psi_cells = grid_.all();
+  for (int d = 0; d < 3; ++d) {
+    const double lo = centre_[d] - reach - grid_.domain_lo(d), hi = centre_[d] + reach - grid_.domain_lo(d);
+    if (g.period[d] > 0.0 && (lo < 0.0 || hi > grid_.length[d])) continue;  // wraps: the whole direction
+    const int offset = kGhost - (d == 0 ? grid_.x_offset : 0);  // storage = global + offset
+    const int first = int(std::floor(lo / grid_.h[d])) - 1 + offset, last = int(std::floor(hi / grid_.h[d])) + 2 + offset;
+    psi_cells.lo[d] = std::max(0, std::min(first, grid_.ext(d)));
+    psi_cells.hi[d] = std::max(psi_cells.lo[d], std::min(last, grid_.ext(d)));
+  }
+  kernels::fill_box(body.psi.data, 0.0, psi_box_);
+  kernels::rigid_sphere_psi(body.psi, g, psi_cells);
+  psi_box_ = psi_cells;
+  active_ = intersection(psi_cells, grid_.interior());
+}
+
+void RigidModel::set_initial_condition(SolidBody& body) {
+  Kokkos::deep_copy(body.psi.data, 0.0);
+  psi_box_ = grid_.all();
+  set_identity(body.b);
+  set_identity(body.b_prev);
+  place(body);
+}
+
+// x_c^(k+1) = x_c^k + dt (gamma_k U^k + zeta_k U^(k-1)), U^k the body's velocity now (rigid
+// inside since the last substep's correction), its held components zero.
+void RigidModel::advance_substep(SolidBody& body, const kernels::Velocity& vel, double dt, int substep) {
+  const kernels::RigidMoments m = kernels::rigid_moments(body.psi, vel, geometry(), grid_.cell_volume(), active_);
+  double U[3];
+  for (int d = 0; d < 3; ++d) {
+    const double mass = comm_.sum(m.mass[d]), momentum = comm_.sum(m.momentum[d]);
+    U[d] = mass > 0.0 ? momentum / mass : 0.0;
+  }
+  if (cfg_solid_.constraint == SolidConstraint::Fixed) U[0] = 0.0;
+  if (cfg_solid_.constraint != SolidConstraint::None) U[1] = U[2] = 0.0;
+  const double a = dt * Rk3::gamma[substep], b = dt * Rk3::zeta[substep];
+  for (int d = 0; d < 3; ++d) {
+    centre_[d] += a * U[d] + b * velocity_[d];
+    if (grid_.bc[d] == Boundary::Periodic) centre_[d] = wrap(centre_[d] - grid_.domain_lo(d), grid_.length[d]) + grid_.domain_lo(d);
+    velocity_[d] = U[d];
+  }
+  place(body);
+}
+
+void RigidModel::constrain_velocity(SolidBody& body, const kernels::Velocity& vel, double dt, int substep) {
+  const kernels::RigidGeometry g = geometry();
+  const double dv = grid_.cell_volume();
+  const kernels::RigidMoments m = kernels::rigid_moments(body.psi, vel, g, dv, active_);
+  double U[3], L[3], inertia[kernels::kTensorComponents], w[3];
+  for (int d = 0; d < 3; ++d) {
+    const double mass = comm_.sum(m.mass[d]);
+    U[d] = mass > 0.0 ? comm_.sum(m.momentum[d]) / mass : 0.0;
+    L[d] = comm_.sum(m.angular[d]);
+  }
+  for (int t = 0; t < kernels::kTensorComponents; ++t) inertia[t] = comm_.sum(m.inertia[t]);
+  solve_symmetric(inertia, L, w);
+  if (cfg_solid_.constraint == SolidConstraint::Fixed) U[0] = w[0] = w[1] = w[2] = 0.0;
+  if (cfg_solid_.constraint != SolidConstraint::None) U[1] = U[2] = 0.0;
+  double impulse[3];
+  kernels::rigid_blend(vel, body.psi, g, U, w, dv, active_, impulse);
+  if (substep == 0) impulse_[0] = impulse_[1] = impulse_[2] = 0.0;
+  for (int d = 0; d < 3; ++d) impulse_[d] += comm_.sum(impulse[d]);
+  if (substep + 1 == Rk3::stages)
+    for (int d = 0; d < 3; ++d) force_[d] = impulse_[d] / dt;
+}
+
+std::map<std::string, double> RigidModel::checkpoint_scalars() const {
+  return {{"centre_x", centre_[0]}, {"centre_y", centre_[1]}, {"centre_z", centre_[2]},
+          {"hold_fx", force_[0]},   {"hold_fy", force_[1]},   {"hold_fz", force_[2]}};
+}
+
+void RigidModel::restore_scalars(const std::map<std::string, double>& s) {
+  const char* names[6] = {"centre_x", "centre_y", "centre_z", "hold_fx", "hold_fy", "hold_fz"};
+  for (int n = 0; n < 6; ++n) {
+    const auto it = s.find(names[n]);
+    if (it == s.end()) throw std::runtime_error(std::string("checkpoint: the rigid body has no '") + names[n] + "'");
+    (n < 3 ? centre_[n] : force_[n - 3]) = it->second;
+  }
+}
+
+void RigidModel::fill_ghosts(SolidBody& body) {
+  // psi from the centre everywhere (a read may have left it on the whole slab), B = I
+  Kokkos::deep_copy(body.psi.data, 0.0);
+  psi_box_ = grid_.all();
+  set_identity(body.b);
+  set_identity(body.b_prev);
+  place(body);
+}
+
+}  // namespace eulerfsi
