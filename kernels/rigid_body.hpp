@@ -32,13 +32,16 @@ inline void rigid_sphere_psi(const WindowField& psi, const RigidGeometry& g, con
   });
 }
 
-// The sums of the rigid-motion fit, each times dV:
-//   mass[D] = sum_faces psi_D, momentum[D] = sum_faces psi_D u_D,
-//   angular = sum_D sum_faces psi_D r x (u_D e_D),
-//   inertia = sum_cells psi (|r|^2 delta_ab - r_a r_b)   (XX, YY, ZZ, XY, XZ, YZ)
+// The sums of the rigid-motion fit, each times dV, over the faces of each component D (psi_D the
+// face's psi, r its position relative to the centre, q_D = r x e_D):
+//   mass[D] = sum psi_D, momentum[D] = sum psi_D u_D, first[D] = sum psi_D r,
+//   angular = sum_D sum psi_D q_D u_D, inertia = sum_D sum psi_D q_D q_D^T (XX, YY, ZZ, XY, XZ, YZ).
+// The rigid motion (U, w) that solves the psi-weighted least-squares fit these sums define
+// (src/solid/rigid_model.cpp) changes neither the flow's momentum nor its angular momentum about the
+// centre when it is blended in (rigid_blend): sum psi_D ((U + w x r)_D - u_D) = 0, and the same times q_D.
 struct RigidMoments {
-  enum { Count = 15 };
-  double mass[3], momentum[3], angular[3], inertia[kTensorComponents];
+  enum { Count = 24 };
+  double mass[3], momentum[3], angular[3], inertia[kTensorComponents], first[3][3];
 };
 
 namespace detail {
@@ -55,6 +58,13 @@ KOKKOS_INLINE_FUNCTION double face_psi(const WindowField& psi, int comp, int i, 
   return 0.5 * (psi(i, j, k) + psi(i + (comp == 0), j + (comp == 1), k + (comp == 2)));
 }
 
+// q = r x e_D
+KOKKOS_INLINE_FUNCTION void lever(const double r[3], int comp, double q[3]) {
+  q[0] = comp == 2 ? r[1] : (comp == 1 ? -r[2] : 0.0);
+  q[1] = comp == 0 ? r[2] : (comp == 2 ? -r[0] : 0.0);
+  q[2] = comp == 1 ? r[0] : (comp == 0 ? -r[1] : 0.0);
+}
+
 // One of RigidMoments' sums (what = its index in the struct's order).
 struct RigidMomentTerm {
   WindowField psi;
@@ -62,35 +72,33 @@ struct RigidMomentTerm {
   RigidGeometry g;
   int what;
   KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k, double& acc) const {
-    if (what < 9) {
-      const int comp = what < 6 ? what % 3 : -1;
-      if (comp >= 0) {
-        const double p = face_psi(psi, comp, i, j, k);
-        acc += what < 3 ? p : p * u[comp](i, j, k);
-        return;
-      }
-      // angular momentum component a: sum over the two other components' faces
-      const int a = what - 6, b = (a + 1) % 3, c = (a + 2) % 3;  // (r x u)_a = r_b u_c - r_c u_b
-      double r[3];
-      face_offset(g, c, i, j, k, r);
-      acc += face_psi(psi, c, i, j, k) * r[b] * u[c](i, j, k);
-      face_offset(g, b, i, j, k, r);
-      acc -= face_psi(psi, b, i, j, k) * r[c] * u[b](i, j, k);
+    if (what < 6) {
+      const int comp = what % 3;
+      const double p = face_psi(psi, comp, i, j, k);
+      acc += what < 3 ? p : p * u[comp](i, j, k);
       return;
     }
-    const int t = what - 9;
+    if (what >= 15) {
+      const int comp = (what - 15) / 3, a = (what - 15) % 3;
+      double r[3];
+      face_offset(g, comp, i, j, k, r);
+      acc += face_psi(psi, comp, i, j, k) * r[a];
+      return;
+    }
     const int ra[6] = {0, 1, 2, 0, 0, 1}, rb[6] = {0, 1, 2, 1, 2, 2};
-    const double r[3] = {min_image(g.xc(0, i) - g.centre[0], g.period[0]),
-                         min_image(g.xc(1, j) - g.centre[1], g.period[1]),
-                         min_image(g.xc(2, k) - g.centre[2], g.period[2])};
-    const double r2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
-    acc += psi(i, j, k) * ((t < 3 ? r2 : 0.0) - r[ra[t]] * r[rb[t]]);
+    for (int comp = 0; comp < 3; ++comp) {
+      double r[3], q[3];
+      face_offset(g, comp, i, j, k, r);
+      lever(r, comp, q);
+      const double p = face_psi(psi, comp, i, j, k);
+      acc += what < 9 ? p * q[what - 6] * u[comp](i, j, k) : p * q[ra[what - 9]] * q[rb[what - 9]];
+    }
   }
 };
 
 }  // namespace detail
 
-// This rank's sums over the owned faces and cells of `box` (the caller MPI-sums them).
+// This rank's sums over the owned faces of `box` (the caller MPI-sums them).
 inline RigidMoments rigid_moments(const WindowField& psi, const Velocity& vel, const RigidGeometry& g, double dv,
                                   const Box& box) {
   RigidMoments m{};
@@ -99,6 +107,7 @@ inline RigidMoments rigid_moments(const WindowField& psi, const Velocity& vel, c
     out[d] = &m.mass[d];
     out[3 + d] = &m.momentum[d];
     out[6 + d] = &m.angular[d];
+    for (int a = 0; a < 3; ++a) out[15 + 3 * d + a] = &m.first[d][a];
   }
   for (int t = 0; t < kTensorComponents; ++t) out[9 + t] = &m.inertia[t];
   for (int w = 0; w < RigidMoments::Count; ++w)
@@ -109,7 +118,7 @@ inline RigidMoments rigid_moments(const WindowField& psi, const Velocity& vel, c
 
 // The rigid motion blended in by psi on every face of `box`, u_D <- u_D + psi_D ((U + w x r)_D - u_D)
 // (Sharma & Patankar 2005); returns this rank's impulse sum psi_D ((U + w x r)_D - u_D) dV per D:
-// zero for a free body (U and w are the psi-weighted fit), the constraint's impulse for a held one.
+// zero for a free body (U and w from RigidMoments), the constraint's impulse for a held one.
 inline void rigid_blend(const Velocity& vel, const WindowField& psi, const RigidGeometry& g, const double U[3],
                         const double w[3], double dv, const Box& box, double impulse[3]) {
   for (int comp = 0; comp < 3; ++comp) {

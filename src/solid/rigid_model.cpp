@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include "kernels/elastic_force.hpp"
 #include "kernels/reference_map.hpp"
@@ -21,20 +23,40 @@ double wrap(double x, double period) {
   return x < 0.0 ? x + period : x;
 }
 
-// x = A^-1 b for a symmetric 3x3 A given as (XX, YY, ZZ, XY, XZ, YZ), by cofactors.
-void solve_symmetric(const double a[6], const double b[3], double x[3]) {
-  const double m[3][3] = {{a[0], a[3], a[4]}, {a[3], a[1], a[5]}, {a[4], a[5], a[2]}};
-  const double c00 = m[1][1] * m[2][2] - m[1][2] * m[2][1], c01 = m[1][2] * m[2][0] - m[1][0] * m[2][2],
-               c02 = m[1][0] * m[2][1] - m[1][1] * m[2][0];
-  const double det = m[0][0] * c00 + m[0][1] * c01 + m[0][2] * c02;
-  if (!(std::fabs(det) > 0.0)) {
-    x[0] = x[1] = x[2] = 0.0;
-    return;
+// Solves the rows and columns `free` of A x = b (n x n, row-major) by Gaussian elimination with
+// partial pivoting; the other unknowns are 0.
+void solve_free(std::vector<double> a, std::vector<double> b, const std::vector<bool>& free, std::vector<double>& x) {
+  const int n = int(b.size());
+  std::vector<int> idx;
+  for (int r = 0; r < n; ++r)
+    if (free[r]) idx.push_back(r);
+  const int m = int(idx.size());
+  std::vector<double> A(m * m), B(m);
+  for (int r = 0; r < m; ++r) {
+    B[r] = b[idx[r]];
+    for (int c = 0; c < m; ++c) A[r * m + c] = a[idx[r] * n + idx[c]];
   }
-  const double inv[3][3] = {{c00, m[0][2] * m[2][1] - m[0][1] * m[2][2], m[0][1] * m[1][2] - m[0][2] * m[1][1]},
-                            {c01, m[0][0] * m[2][2] - m[0][2] * m[2][0], m[0][2] * m[1][0] - m[0][0] * m[1][2]},
-                            {c02, m[0][1] * m[2][0] - m[0][0] * m[2][1], m[0][0] * m[1][1] - m[0][1] * m[1][0]}};
-  for (int r = 0; r < 3; ++r) x[r] = (inv[r][0] * b[0] + inv[r][1] * b[1] + inv[r][2] * b[2]) / det;
+  for (int col = 0; col < m; ++col) {
+    int piv = col;
+    for (int r = col + 1; r < m; ++r)
+      if (std::fabs(A[r * m + col]) > std::fabs(A[piv * m + col])) piv = r;
+    if (!(std::fabs(A[piv * m + col]) > 0.0)) throw std::runtime_error("rigid body: its inertia is singular (no psi?)");
+    for (int c = 0; c < m; ++c) std::swap(A[col * m + c], A[piv * m + c]);
+    std::swap(B[col], B[piv]);
+    for (int r = col + 1; r < m; ++r) {
+      const double f = A[r * m + col] / A[col * m + col];
+      for (int c = col; c < m; ++c) A[r * m + c] -= f * A[col * m + c];
+      B[r] -= f * B[col];
+    }
+  }
+  std::vector<double> y(m);
+  for (int r = m - 1; r >= 0; --r) {
+    double v = B[r];
+    for (int c = r + 1; c < m; ++c) v -= A[r * m + c] * y[c];
+    y[r] = v / A[r * m + r];
+  }
+  x.assign(n, 0.0);
+  for (int r = 0; r < m; ++r) x[idx[r]] = y[r];
 }
 
 }  // namespace
@@ -111,16 +133,30 @@ void RigidModel::constrain_velocity(SolidBody& body, const kernels::Velocity& ve
   const kernels::RigidGeometry g = geometry();
   const double dv = grid_.cell_volume();
   const kernels::RigidMoments m = kernels::rigid_moments(body.psi, vel, g, dv, active_);
-  double U[3], L[3], inertia[kernels::kTensorComponents], w[3];
+  // The rigid motion (U, w) whose blend changes neither the flow's momentum nor its angular
+  // momentum about the centre (the psi-weighted least-squares fit):
+  //   mass_D U_D + (w x first_D)_D = momentum_D,   sum_D U_D (first_D x e_D) + inertia w = angular,
+  // symmetric; the held components are 0 and their rows dropped.
+  std::vector<double> a(36, 0.0), rhs(6, 0.0), x;
+  const int ra[6] = {0, 1, 2, 0, 0, 1}, rb[6] = {0, 1, 2, 1, 2, 2};
   for (int d = 0; d < 3; ++d) {
-    const double mass = comm_.sum(m.mass[d]);
-    U[d] = mass > 0.0 ? comm_.sum(m.momentum[d]) / mass : 0.0;
-    L[d] = comm_.sum(m.angular[d]);
+    double first[3], q[3];
+    for (int e = 0; e < 3; ++e) first[e] = comm_.sum(m.first[d][e]);
+    kernels::detail::lever(first, d, q);  // first_D x e_D
+    a[d * 6 + d] = comm_.sum(m.mass[d]);
+    for (int e = 0; e < 3; ++e) a[d * 6 + 3 + e] = a[(3 + e) * 6 + d] = q[e];
+    rhs[d] = comm_.sum(m.momentum[d]);
+    rhs[3 + d] = comm_.sum(m.angular[d]);
   }
-  for (int t = 0; t < kernels::kTensorComponents; ++t) inertia[t] = comm_.sum(m.inertia[t]);
-  solve_symmetric(inertia, L, w);
-  if (cfg_solid_.constraint == SolidConstraint::Fixed) U[0] = w[0] = w[1] = w[2] = 0.0;
-  if (cfg_solid_.constraint != SolidConstraint::None) U[1] = U[2] = 0.0;
+  for (int t = 0; t < kernels::kTensorComponents; ++t) {
+    const double v = comm_.sum(m.inertia[t]);
+    a[(3 + ra[t]) * 6 + 3 + rb[t]] = a[(3 + rb[t]) * 6 + 3 + ra[t]] = v;
+  }
+  std::vector<bool> free(6, true);
+  if (cfg_solid_.constraint == SolidConstraint::Fixed) free.assign(6, false);
+  if (cfg_solid_.constraint == SolidConstraint::Radial) free[1] = free[2] = false;
+  solve_free(a, rhs, free, x);
+  const double U[3] = {x[0], x[1], x[2]}, w[3] = {x[3], x[4], x[5]};
   double impulse[3];
   kernels::rigid_blend(vel, body.psi, g, U, w, dv, active_, impulse);
   if (substep == 0) impulse_[0] = impulse_[1] = impulse_[2] = 0.0;

@@ -3,7 +3,7 @@ set(REG ${CMAKE_CURRENT_SOURCE_DIR}/regression)
 # 1 and 2 ranks agree to round-off: dp/dx is a difference of O(1) numbers ~1e-3 apart and KE
 # sums 1e4 terms in a different order, so relative differences of ~1e-13 per step are expected;
 # 1e-10 bounds 40 steps with a margin of 25, and a wrong halo or transpose gives O(1e-3).
-foreach(c unsteady_pipe particle_pipe particle_pipe_frame particle_pipe_refmap particle_pipe_implicit)
+foreach(c unsteady_pipe particle_pipe particle_pipe_frame particle_pipe_refmap particle_pipe_implicit particle_pipe_rigid)
   add_test(NAME rank_independence_${c}
            COMMAND bash ${REG}/rank_independence.sh $<TARGET_FILE:eulerfsi> ${REG}/cases/${c}.toml
                    ${CMAKE_BINARY_DIR}/regression/rank_${c} --rtol 1e-10 --field-tol 1e-10)
@@ -16,7 +16,7 @@ add_test(NAME rank_independence_particle_pipe_np4
 set_tests_properties(rank_independence_particle_pipe_np4 PROPERTIES ENVIRONMENT "${EULERFSI_TEST_ENV};NP=4" PROCESSORS 2)
 # a continued run matches the uninterrupted one bit for bit, on 1 rank (grid at rest) and on
 # 2 ranks (grid following the particle: the frame's velocity and offset are part of the state)
-foreach(np_case "1;particle_pipe" "2;particle_pipe_frame" "2;particle_pipe_refmap" "2;particle_pipe_implicit")
+foreach(np_case "1;particle_pipe" "2;particle_pipe_frame" "2;particle_pipe_refmap" "2;particle_pipe_implicit" "2;particle_pipe_rigid")
   list(GET np_case 0 np)
   list(GET np_case 1 c)
   add_test(NAME restart_bit_for_bit_np${np}_${c}
