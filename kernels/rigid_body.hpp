@@ -119,23 +119,29 @@ inline RigidMoments rigid_moments(const WindowField& psi, const Velocity& vel, c
 // The rigid motion blended in by psi on every face of `box`, u_D <- u_D + psi_D ((U + w x r)_D - u_D)
 // (Sharma & Patankar 2005); returns this rank's impulse sum psi_D ((U + w x r)_D - u_D) dV per D:
 // zero for a free body (U and w from RigidMoments), the constraint's impulse for a held one.
+// psi_D ((U + w x r)_D - u_D) on the face of component D at (i, j, k)
+KOKKOS_INLINE_FUNCTION double rigid_difference(const Field3& u, const WindowField& psi, const RigidGeometry& g,
+                                               int comp, double Uc, double w0, double w1, double w2, int i, int j,
+                                               int k) {
+  double r[3];
+  detail::face_offset(g, comp, i, j, k, r);
+  const double wxr[3] = {w1 * r[2] - w2 * r[1], w2 * r[0] - w0 * r[2], w0 * r[1] - w1 * r[0]};
+  return detail::face_psi(psi, comp, i, j, k) * (Uc + wxr[comp] - u(i, j, k));
+}
+
 inline void rigid_blend(const Velocity& vel, const WindowField& psi, const RigidGeometry& g, const double U[3],
                         const double w[3], double dv, const Box& box, double impulse[3]) {
   for (int comp = 0; comp < 3; ++comp) {
     const Field3 u = vel.c[comp];
     const double Uc = U[comp], w0 = w[0], w1 = w[1], w2 = w[2];
-    auto rigid = KOKKOS_LAMBDA(int i, int j, int k) {
-      double r[3];
-      detail::face_offset(g, comp, i, j, k, r);
-      const double wxr[3] = {w1 * r[2] - w2 * r[1], w2 * r[0] - w0 * r[2], w0 * r[1] - w1 * r[0]};
-      return detail::face_psi(psi, comp, i, j, k) * (Uc + wxr[comp] - u(i, j, k));
-    };
     double j_sum = 0.0;
     reduce_cells("eulerfsi::rigid::impulse", box, KOKKOS_LAMBDA(int i, int j, int k, double& acc) {
-      acc += rigid(i, j, k);
+      acc += rigid_difference(u, psi, g, comp, Uc, w0, w1, w2, i, j, k);
     }, Kokkos::Sum<double>(j_sum));
     impulse[comp] = dv * j_sum;
-    for_each_cell("eulerfsi::rigid::blend", box, KOKKOS_LAMBDA(int i, int j, int k) { u(i, j, k) += rigid(i, j, k); });
+    for_each_cell("eulerfsi::rigid::blend", box, KOKKOS_LAMBDA(int i, int j, int k) {
+      u(i, j, k) += rigid_difference(u, psi, g, comp, Uc, w0, w1, w2, i, j, k);
+    });
   }
 }
 
