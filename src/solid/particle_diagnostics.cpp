@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "kernels/particle_moments.hpp"
+#include "solid/rigid_fit.hpp"
 
 namespace eulerfsi {
 
@@ -182,6 +183,19 @@ std::vector<ParticleState> ParticleTracker::measure(const SolidPhase& solids, co
     s.centre[1] = c_local[1];
     s.centre[2] = c_local[2];
     for (int a = 0; a < 3; ++a) s.velocity[a] = first.s[F::U + a] / core_volume;
+    {
+      kernels::RigidGeometry g;
+      for (int d = 0; d < 3; ++d) {
+        g.xc.x0[d] = xc.x0[d];
+        g.xc.h[d] = xc.h[d];
+        g.centre[d] = c_local[d];
+        g.period[d] = period[d];
+      }
+      g.radius = g.eps = 0.0;  // not used by the moments
+      const RigidMotion fit =
+          fit_rigid_motion(kernels::rigid_moments(body.psi, flow.vel, g, grid_.cell_volume(), box), comm_);
+      for (int a = 0; a < 3; ++a) s.spin[a] = fit.w[a];
+    }
     s.velocity[0] += frame.velocity;
     // covariance about the centroid; an ellipsoid with semi-axis a has <x^2> = a^2 / 5
     const int ra[6] = {0, 1, 2, 0, 0, 1}, rb[6] = {0, 1, 2, 1, 2, 2};
@@ -245,7 +259,7 @@ const std::vector<std::string>& particle_columns() {
   static const std::vector<std::string> cols = {
       "step", "t", "solid", "xc", "yc", "zc", "r_over_R", "up", "vp", "wp", "volume", "taylor_D", "angle",
       "F_r", "F_r_pressure", "F_r_inertia", "F_r_viscous", "F_r_elastic", "P_r",
-      "F_r_paper", "F_r_paper_inertia", "F_r_paper_viscous", "F_r_paper_elastic", "hold_Fx", "hold_Fy", "hold_Fz"};
+      "F_r_paper", "F_r_paper_inertia", "F_r_paper_viscous", "F_r_paper_elastic", "hold_Fx", "hold_Fy", "hold_Fz", "spin_x", "spin_y", "spin_z"};
   return cols;
 }
 
@@ -253,7 +267,7 @@ std::vector<double> particle_row(long step, double t, int body, const ParticleSt
   return {double(step), t, double(body), s.centre[0], s.centre[1], s.centre[2], s.r_over_R, s.velocity[0],
           s.velocity[1], s.velocity[2], s.volume, s.taylor_D, s.angle, s.force_total(), s.force[0], s.force[1],
           s.force[2], s.force[3], s.momentum_r, s.force_paper_total(), s.force_paper[1], s.force_paper[2],
-          s.force_paper[3], s.hold_force[0], s.hold_force[1], s.hold_force[2]};
+          s.force_paper[3], s.hold_force[0], s.hold_force[1], s.hold_force[2], s.spin[0], s.spin[1], s.spin[2]};
 }
 
 }  // namespace eulerfsi

@@ -31,6 +31,9 @@ struct ParticleState {
   double force_paper[4] = {0, 0, 0, 0};
   // The force that holds a constrained body (solid.constraint), mean over the last step; 0 when free.
   double hold_force[3] = {0, 0, 0};
+  // Angular velocity: the rigid motion that fits the body's velocity about its centroid, weighted by
+  // psi (src/solid/rigid_fit.hpp); a rigid body's own, a soft body's mean spin.
+  double spin[3] = {0, 0, 0};
   double force_total() const { return force[0] + force[1] + force[2] + force[3]; }
   double force_paper_total() const { return force_paper[0] + force_paper[1] + force_paper[2] + force_paper[3]; }
 };

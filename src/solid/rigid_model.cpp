@@ -8,6 +8,7 @@
 #include "kernels/elastic_force.hpp"
 #include "kernels/reference_map.hpp"
 #include "solid/paper_model.hpp"
+#include "solid/rigid_fit.hpp"
 #include "solver/rk3.hpp"
 
 namespace eulerfsi {
@@ -23,42 +24,6 @@ double wrap(double x, double period) {
   return x < 0.0 ? x + period : x;
 }
 
-// Solves the rows and columns `free` of A x = b (n x n, row-major) by Gaussian elimination with
-// partial pivoting; the other unknowns are 0.
-void solve_free(std::vector<double> a, std::vector<double> b, const std::vector<bool>& free, std::vector<double>& x) {
-  const int n = int(b.size());
-  std::vector<int> idx;
-  for (int r = 0; r < n; ++r)
-    if (free[r]) idx.push_back(r);
-  const int m = int(idx.size());
-  std::vector<double> A(m * m), B(m);
-  for (int r = 0; r < m; ++r) {
-    B[r] = b[idx[r]];
-    for (int c = 0; c < m; ++c) A[r * m + c] = a[idx[r] * n + idx[c]];
-  }
-  for (int col = 0; col < m; ++col) {
-    int piv = col;
-    for (int r = col + 1; r < m; ++r)
-      if (std::fabs(A[r * m + col]) > std::fabs(A[piv * m + col])) piv = r;
-    if (!(std::fabs(A[piv * m + col]) > 0.0)) throw std::runtime_error("rigid body: its inertia is singular (no psi?)");
-    for (int c = 0; c < m; ++c) std::swap(A[col * m + c], A[piv * m + c]);
-    std::swap(B[col], B[piv]);
-    for (int r = col + 1; r < m; ++r) {
-      const double f = A[r * m + col] / A[col * m + col];
-      for (int c = col; c < m; ++c) A[r * m + c] -= f * A[col * m + c];
-      B[r] -= f * B[col];
-    }
-  }
-  std::vector<double> y(m);
-  for (int r = m - 1; r >= 0; --r) {
-    double v = B[r];
-    for (int c = r + 1; c < m; ++c) v -= A[r * m + c] * y[c];
-    y[r] = v / A[r * m + r];
-  }
-  x.assign(n, 0.0);
-  for (int r = 0; r < m; ++r) x[idx[r]] = y[r];
-}
-
 }  // namespace
 
 RigidModel::RigidModel(const SolidConfig& solid, const CaseConfig&, const Grid& grid, const Comm& comm)
@@ -66,6 +31,13 @@ RigidModel::RigidModel(const SolidConfig& solid, const CaseConfig&, const Grid& 
   for (int d = 0; d < 3; ++d) centre_[d] = solid.center[d];
   centre_[0] = wrap(centre_[0], grid.length[0]);
   for (int c = 0; c < 3; ++c) scratch_[c] = grid.make_field("rigid_scratch");
+}
+
+std::array<bool, 6> RigidModel::held() const {
+  std::array<bool, 6> h{false, false, false, false, false, false};
+  if (cfg_solid_.constraint == SolidConstraint::Fixed) h.fill(true);
+  if (cfg_solid_.constraint == SolidConstraint::Radial) h[1] = h[2] = true;
+  return h;
 }
 
 kernels::RigidGeometry RigidModel::geometry() const {
@@ -112,14 +84,9 @@ void RigidModel::set_initial_condition(SolidBody& body) {
 // x_c^(k+1) = x_c^k + dt (gamma_k U^k + zeta_k U^(k-1)), U^k the body's velocity now (rigid
 // inside since the last substep's correction), its held components zero.
 void RigidModel::advance_substep(SolidBody& body, const kernels::Velocity& vel, double dt, int substep) {
-  const kernels::RigidMoments m = kernels::rigid_moments(body.psi, vel, geometry(), grid_.cell_volume(), active_);
-  double U[3];
-  for (int d = 0; d < 3; ++d) {
-    const double mass = comm_.sum(m.mass[d]), momentum = comm_.sum(m.momentum[d]);
-    U[d] = mass > 0.0 ? momentum / mass : 0.0;
-  }
-  if (cfg_solid_.constraint == SolidConstraint::Fixed) U[0] = 0.0;
-  if (cfg_solid_.constraint != SolidConstraint::None) U[1] = U[2] = 0.0;
+  const RigidMotion fit =
+      fit_rigid_motion(kernels::rigid_moments(body.psi, vel, geometry(), grid_.cell_volume(), active_), comm_, held());
+  const double* U = fit.U;
   const double a = dt * Rk3::gamma[substep], b = dt * Rk3::zeta[substep];
   for (int d = 0; d < 3; ++d) {
     centre_[d] += a * U[d] + b * velocity_[d];
@@ -133,32 +100,9 @@ void RigidModel::constrain_velocity(SolidBody& body, const kernels::Velocity& ve
   const kernels::RigidGeometry g = geometry();
   const double dv = grid_.cell_volume();
   const kernels::RigidMoments m = kernels::rigid_moments(body.psi, vel, g, dv, active_);
-  // The rigid motion (U, w) whose blend changes neither the flow's momentum nor its angular
-  // momentum about the centre (the psi-weighted least-squares fit):
-  //   mass_D U_D + (w x first_D)_D = momentum_D,   sum_D U_D (first_D x e_D) + inertia w = angular,
-  // symmetric; the held components are 0 and their rows dropped.
-  std::vector<double> a(36, 0.0), rhs(6, 0.0), x;
-  const int ra[6] = {0, 1, 2, 0, 0, 1}, rb[6] = {0, 1, 2, 1, 2, 2};
-  for (int d = 0; d < 3; ++d) {
-    double first[3], q[3];
-    for (int e = 0; e < 3; ++e) first[e] = comm_.sum(m.first[d][e]);
-    kernels::detail::lever(first, d, q);  // first_D x e_D
-    a[d * 6 + d] = comm_.sum(m.mass[d]);
-    for (int e = 0; e < 3; ++e) a[d * 6 + 3 + e] = a[(3 + e) * 6 + d] = q[e];
-    rhs[d] = comm_.sum(m.momentum[d]);
-    rhs[3 + d] = comm_.sum(m.angular[d]);
-  }
-  for (int t = 0; t < kernels::kTensorComponents; ++t) {
-    const double v = comm_.sum(m.inertia[t]);
-    a[(3 + ra[t]) * 6 + 3 + rb[t]] = a[(3 + rb[t]) * 6 + 3 + ra[t]] = v;
-  }
-  std::vector<bool> free(6, true);
-  if (cfg_solid_.constraint == SolidConstraint::Fixed) free.assign(6, false);
-  if (cfg_solid_.constraint == SolidConstraint::Radial) free[1] = free[2] = false;
-  solve_free(a, rhs, free, x);
-  const double U[3] = {x[0], x[1], x[2]}, w[3] = {x[3], x[4], x[5]};
+  const RigidMotion fit = fit_rigid_motion(m, comm_, held());
   double impulse[3];
-  kernels::rigid_blend(vel, body.psi, g, U, w, dv, active_, impulse);
+  kernels::rigid_blend(vel, body.psi, g, fit.U, fit.w, dv, active_, impulse);
   if (substep == 0) impulse_[0] = impulse_[1] = impulse_[2] = 0.0;
   for (int d = 0; d < 3; ++d) impulse_[d] += comm_.sum(impulse[d]);
   if (substep + 1 == Rk3::stages)

@@ -38,6 +38,7 @@ class RigidModel final : public SolidModel {
 
  private:
   kernels::RigidGeometry geometry() const;
+  std::array<bool, 6> held() const;  // (U_x, U_y, U_z, w_x, w_y, w_z) held by the constraint
   void place(SolidBody& body);  // psi and the active box from the centre
 
   SolidConfig cfg_solid_;
