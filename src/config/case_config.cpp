@@ -577,6 +577,9 @@ void read_solids(const Reader& r, const toml::table& root, const DomainConfig& d
     const toml::table* t = arr->get(i)->as_table();
     r.check_keys(*t, s, "solid");
     SolidConfig c;
+    // a case file's bodies default to the reference map: right at the resolutions a user can
+    // afford (the paper's model needs ~48 cells per diameter and is one key away)
+    c.model = SolidModelKind::ReferenceMap;
     r.get(t, s, "shape", c.shape, kShapes);
     // a key of the other shape would be silently ignored, which hides a mistake
     const auto foreign = c.shape == SolidShape::Sphere ? std::vector<const char*>{"thickness"}

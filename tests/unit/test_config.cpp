@@ -117,6 +117,7 @@ We = 2.5
 viscosity_ratio = 0.0
 initial_velocity = "rest"
 b_extension = false
+model = "paper"
 
 [[solid]]
 center = [3.0, -0.1, 0.1]
@@ -198,6 +199,7 @@ TEST(Config, EverySectionIsRead) {
   EXPECT_EQ(c.solids[0].map_margin, SolidConfig{}.map_margin);
   EXPECT_FALSE(c.solids[0].b_extension);
   EXPECT_TRUE(c.solids[1].b_extension);
+  EXPECT_EQ(c.solids[0].model, SolidModelKind::Paper);
 }
 
 TEST(Config, CouetteWithLayer) {
@@ -217,6 +219,30 @@ thickness = 1.0
   ASSERT_EQ(c.solids.size(), 1u);
   EXPECT_EQ(c.solids[0].shape, SolidShape::Layer);
   EXPECT_EQ(c.solids[0].thickness, 1.0);
+}
+
+// A case file's body is carried by the reference map unless it says otherwise; a rigid sphere
+// takes a constraint, which survives the resolved file's round trip.
+TEST(Config, SolidModelsAndConstraints) {
+  const CaseConfig c = parse_case_string(R"(
+[[solid]]
+center = [0.5, 0.1, 0.0]
+[[solid]]
+center = [2.0, -0.1, 0.0]
+model = "rigid"
+constraint = "radial"
+)");
+  ASSERT_EQ(c.solids.size(), 2u);
+  EXPECT_EQ(c.solids[0].model, SolidModelKind::ReferenceMap);
+  EXPECT_EQ(c.solids[0].constraint, SolidConstraint::None);
+  EXPECT_EQ(c.solids[1].model, SolidModelKind::Rigid);
+  EXPECT_EQ(c.solids[1].constraint, SolidConstraint::Radial);
+  const CaseConfig again = parse_case_string(to_toml(c));
+  EXPECT_EQ(again.solids[1].constraint, SolidConstraint::Radial);
+  EXPECT_EQ(again.solids[0].model, SolidModelKind::ReferenceMap);
+  expect_error("[[solid]]\nconstraint = \"fixed\"\n", {"solid[0].constraint = \"fixed\"", "\"rigid\""});
+  expect_error("[[solid]]\nmodel = \"rigid\"\nconstraint = \"pinned\"\n",
+               {"solid[0].constraint = \"pinned\"", "\"radial\""});
 }
 
 TEST(Config, Spellings) {
@@ -441,7 +467,7 @@ TEST(ConfigErrors, Layers) {
 }
 
 TEST(ConfigErrors, MapMarginBelongsToTheReferenceMap) {
-  expect_error("[[solid]]\nmap_margin = 0.5\n", {"solid[0].map_margin = 0.5", "\"reference-map\" only"});
+  expect_error("[[solid]]\nmodel = \"paper\"\nmap_margin = 0.5\n", {"solid[0].map_margin = 0.5", "\"reference-map\" only"});
   expect_error("[[solid]]\nmodel = \"reference-map\"\nmap_margin = 1.5\n", {"solid[0].map_margin = 1.5", "[0, 1]"});
   expect_error("[[solid]]\nmodel = \"reference-map\"\nb_extension = false\n",
                {"solid[0].b_extension = false", "\"paper\" only"});
