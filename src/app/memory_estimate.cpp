@@ -116,6 +116,11 @@ MemoryEstimate estimate_memory(const CaseConfig& cfg, const Grid& grid) {
                   (cfg.output.fields_every > 0 ? kSnapshotFields : 0.0) +
                   (cfg.time.implicit_viscosity ? kImplicitViscosityFields : 0.0);
   for (const auto& s : cfg.solids) {
+    if (s.model == SolidModelKind::Rigid) {  // psi, B and B_prev on the whole slab, nothing else
+      m.solid_fields += kBodyFields;
+      m.solid_peak_fields += kBodyFields;
+      continue;
+    }
     if (s.model == SolidModelKind::Paper) {
       m.solid_fields += kBodyFields + kPaperModelFields;
       m.solid_peak_fields += kBodyFields + kPaperModelFields;

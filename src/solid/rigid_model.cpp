@@ -30,7 +30,6 @@ RigidModel::RigidModel(const SolidConfig& solid, const CaseConfig&, const Grid& 
     : cfg_solid_(solid), grid_(grid), comm_(comm) {
   for (int d = 0; d < 3; ++d) centre_[d] = solid.center[d];
   centre_[0] = wrap(centre_[0], grid.length[0]);
-  for (int c = 0; c < 3; ++c) scratch_[c] = grid.make_field("rigid_scratch");
 }
 
 std::array<bool, 6> RigidModel::held() const {

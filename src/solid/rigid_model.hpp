@@ -30,6 +30,7 @@ class RigidModel final : public SolidModel {
   void fill_ghosts(SolidBody& body) override;
   Box active_box() const override { return active_; }
   Box psi_box() const override { return psi_box_; }
+  // no elastic force reads it: nothing allocated
   kernels::Scratch3 scratch() override { return {{scratch_[0], scratch_[1], scratch_[2]}}; }
   bool elastic() const override { return false; }
   bool constrains_velocity() const override { return true; }
