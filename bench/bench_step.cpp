@@ -81,12 +81,14 @@ void time_steps(benchmark::State& state, const CaseConfig& cfg, const std::strin
 
 // implicit: time.implicit_viscosity (three Helmholtz solves per substep besides the Poisson one)
 void step_benchmark(benchmark::State& state, bool implicit) {
-  // particle: 0 none, 1 the paper's model, 2 the reference map
+  // particle: 0 none, 1 the paper's model, 2 the reference map, 3 a rigid sphere
   const bool particle = state.range(3) != 0;
-  const SolidModelKind model = state.range(3) == 2 ? SolidModelKind::ReferenceMap : SolidModelKind::Paper;
+  const SolidModelKind kinds[4] = {SolidModelKind::Paper, SolidModelKind::Paper, SolidModelKind::ReferenceMap,
+                                   SolidModelKind::Rigid};
+  const SolidModelKind model = kinds[state.range(3)];
   CaseConfig cfg = pipe_case(int(state.range(0)), int(state.range(1)), int(state.range(2)), particle, model);
   cfg.time.implicit_viscosity = implicit;
-  static const char* labels[3] = {"pipe ", "pipe+sphere(paper) ", "pipe+sphere(refmap) "};
+  static const char* labels[4] = {"pipe ", "pipe+sphere(paper) ", "pipe+sphere(refmap) ", "pipe+sphere(rigid) "};
   time_steps(state, cfg, std::string(labels[state.range(3)]) + (implicit ? "implicit-viscosity " : ""));
 }
 
@@ -101,6 +103,7 @@ BENCHMARK(BM_Step)
     ->Args({128, 64, 64, 1})
     ->Args({64, 64, 64, 2})
     ->Args({128, 64, 64, 2})
+    ->Args({128, 64, 64, 3})
     ->Args({160, 80, 80, 0})
     ->Args({160, 80, 80, 1})
     ->Args({160, 80, 80, 2})

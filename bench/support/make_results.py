@@ -86,7 +86,7 @@ def main():
                 ns = r["particle_ns_per_cell_step"]
                 rows.append((1, grid, name, threads, ranks, label, ns, 1, ns, None))
             elif kind == "step":
-                sphere = {"0": "", "1": " + sphere (paper model)", "2": " + sphere (reference map)"}[a.get("particle", "0")]
+                sphere = {"0": "", "1": " + sphere (paper model)", "2": " + sphere (reference map)", "3": " + sphere (rigid)"}[a.get("particle", "0")]
                 implicit = " (implicit viscosity)" if fn == "StepImplicitViscosity" else ""
                 label = f"**whole RK3 step {grid}{sphere}{implicit}**"
                 rows.append((1, grid, name, threads, ranks, label, r["ns_per_cell_step"], 1, r["ns_per_cell_step"], None))
