@@ -1,0 +1,255 @@
+#!/usr/bin/python3
+"""Lift-force maps: a held rigid sphere at a list of positions, its cross-stream force against position.
+
+  eulerfsi_liftmap.py run CASE --radii 0.1,0.2,... [--binary build/eulerfsi] [--jobs 2] [--np 1]
+                          [--out-root runs/liftmap] [--set k=v ...] [--average-from 0.5]
+  eulerfsi_liftmap.py run CASE --points y1:z1,y2:z2,... [...]        (a duct: positions in y, z)
+  eulerfsi_liftmap.py table OUT_ROOT [--average-from 0.5]
+
+CASE holds one [[solid]] (solid[0]); each position runs as
+  [mpirun -np NP] BINARY run CASE --out OUT_ROOT/<position> --set solid[0].model="rigid"
+      --set solid[0].constraint="radial" --set solid[0].center=[x, y, z] [--set k=v ...]
+with x from the case and (y, z) = (r R, 0) for --radii (R = Ly/2, r in units of R) or the given
+point. Positions run side by side, --jobs at a time. A position whose run dir holds a checkpoint
+continues from it (--restart), so a map is extended by raising time.t_end and running it again.
+
+The table (OUT_ROOT/liftmap.csv, liftmap.png) takes, per position, the mean over the last part of
+the run (t >= average_from * t_last) of the force the fluid exerts on the body, F = -hold_F (the
+holding force's opposite), its radial part F_r = F . e_r, the spread of F_r over that window
+(half the difference of the means of its two halves: a drift bound), the slip u_p - u_f (u_f the
+laminar profile there) and the spin about e_x x e_r. For --radii it finds the zeros of F_r by
+linear interpolation and their stability from the slope (dF_r/dr < 0: stable).
+Exit code: 0 done, 1 a run failed, 2 a usage error.
+"""
+import argparse
+import concurrent.futures
+import csv
+import math
+import subprocess
+import sys
+import tomllib
+from pathlib import Path
+
+
+class LiftMapError(Exception):
+    """A usage problem reported in one line with exit code 2."""
+
+
+def read_case(path):
+    try:
+        with open(path, "rb") as f:
+            case = tomllib.load(f)
+    except FileNotFoundError:
+        raise LiftMapError(f"case '{path}' not found")
+    except tomllib.TOMLDecodeError as e:
+        raise LiftMapError(f"case '{path}': {e}")
+    solids = case.get("solid", [])
+    if len(solids) != 1:
+        raise LiftMapError(f"case '{path}' must hold exactly one [[solid]] (it holds {len(solids)})")
+    return case
+
+
+def positions(case, radii, points):
+    """(name, y, z) per position: radii in units of R = Ly/2 along +y, or (y, z) points."""
+    if bool(radii) == bool(points):
+        raise LiftMapError("give either --radii (a pipe) or --points (a duct), not both or neither")
+    ly = case.get("domain", {}).get("length", [3.0, 1.0, 1.0])[1]
+    out = []
+    if radii:
+        for r in radii.split(","):
+            r = float(r)
+            out.append((f"r{r:.4f}", r * ly / 2, 0.0))
+    else:
+        for p in points.split(","):
+            try:
+                y, z = (float(v) for v in p.split(":"))
+            except ValueError:
+                raise LiftMapError(f"--points: '{p}' is not y:z")
+            out.append((f"y{y:+.4f}_z{z:+.4f}", y, z))
+    return out
+
+
+def run_command(binary, case_path, case, out_dir, y, z, np_, mpirun, sets):
+    x = case["solid"][0].get("center", [0.0, 0.0, 0.0])[0]
+    cmd = [mpirun, "-np", str(np_)] if np_ > 1 else []
+    cmd += [str(binary), "run", str(case_path), "--out", str(out_dir), "--quiet",
+            "--set", 'solid[0].model="rigid"', "--set", 'solid[0].constraint="radial"',
+            "--set", f"solid[0].center=[{x!r}, {y!r}, {z!r}]"]
+    for s in sets:
+        cmd += ["--set", s]
+    if (out_dir / "checkpoint.h5").exists():
+        cmd.append("--restart")
+    return cmd
+
+
+def run_one(cmd, log):
+    with open(log, "w") as f:
+        f.write(" ".join(cmd) + "\n")
+        f.flush()
+        return subprocess.run(cmd, stdout=f, stderr=subprocess.STDOUT).returncode
+
+
+def read_rows(path):
+    with open(path) as f:
+        return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
+
+
+def laminar_u(case, y, z):
+    """The laminar profile at (y, z): the pipe's 2 U_b (1 - r^2 / R^2); elsewhere not known here."""
+    geo = case.get("domain", {}).get("geometry", "pipe")
+    ub = case.get("flow", {}).get("bulk_velocity", 1.0)
+    if geo != "pipe":
+        return float("nan")
+    return 2.0 * ub * (1.0 - 4.0 * (y * y + z * z))
+
+
+def summarise(case, run_dir, y, z, average_from):
+    rows = [r for r in read_rows(run_dir / "particle.csv") if r["solid"] == 0]
+    if not rows:
+        raise LiftMapError(f"{run_dir}/particle.csv has no rows")
+    t_last = rows[-1]["t"]
+    window = [r for r in rows if r["t"] >= average_from * t_last]
+    rr = math.hypot(y, z)
+    er = (y / rr, z / rr) if rr > 0 else (1.0, 0.0)
+
+    def mean(rs, f):
+        return sum(f(r) for r in rs) / len(rs)
+
+    def f_r(r):
+        return -(r["hold_Fy"] * er[0] + r["hold_Fz"] * er[1])
+
+    half = len(window) // 2
+    spread = abs(mean(window[:half], f_r) - mean(window[half:], f_r)) / 2 if half > 0 else float("nan")
+    # e_x x e_r = (0, -e_r,z, e_r,y)
+    spin = mean(window, lambda r: -r["spin_y"] * er[1] + r["spin_z"] * er[0])
+    return {
+        "position": run_dir.name, "y": y, "z": z, "r_over_R": rr / (case.get("domain", {}).get("length", [3, 1, 1])[1] / 2),
+        "F_r": mean(window, f_r), "F_r_spread": spread,
+        "F_y": mean(window, lambda r: -r["hold_Fy"]), "F_z": mean(window, lambda r: -r["hold_Fz"]),
+        "slip": mean(window, lambda r: r["up"]) - laminar_u(case, y, z), "spin": spin,
+        "t_from": window[0]["t"], "t_to": t_last, "samples": len(window),
+    }
+
+
+def zeros(table):
+    """Sign changes of F_r between consecutive radii: (r, stable) by linear interpolation."""
+    out = []
+    for a, b in zip(table, table[1:]):
+        fa, fb = a["F_r"], b["F_r"]
+        if fa == 0.0 or fa * fb < 0.0:
+            r = a["r_over_R"] if fa == 0.0 else a["r_over_R"] + (b["r_over_R"] - a["r_over_R"]) * fa / (fa - fb)
+            out.append((r, fb < fa))  # F_r falling through zero: pushed back from both sides
+    return out
+
+
+def write_table(case, root, entries, average_from, radial):
+    table = [summarise(case, root / name, y, z, average_from) for name, y, z in entries]
+    if radial:
+        table.sort(key=lambda e: e["r_over_R"])
+    cols = list(table[0].keys())
+    with open(root / "liftmap.csv", "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=cols)
+        w.writeheader()
+        w.writerows(table)
+    found = zeros(table) if radial else []
+    with open(root / "liftmap_zeros.csv", "w") as f:
+        f.write("r_over_R,stable\n")
+        for r, stable in found:
+            f.write(f"{r:.6g},{int(stable)}\n")
+    for r, stable in found:
+        print(f"equilibrium r/R = {r:.4f} ({'stable' if stable else 'unstable'})")
+    plot(table, found, root / "liftmap.png", radial)
+    return table, found
+
+
+def plot(table, found, path, radial):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(5.5, 3.8))
+    if radial:
+        r = [e["r_over_R"] for e in table]
+        ax.errorbar(r, [e["F_r"] for e in table], yerr=[e["F_r_spread"] for e in table], marker="o", capsize=3)
+        ax.axhline(0.0, color="0.6", lw=0.8)
+        for z, stable in found:
+            ax.plot([z], [0.0], marker="o", ms=9, mfc="k" if stable else "w", mec="k", ls="none")
+        ax.set_xlabel("r / R")
+        ax.set_ylabel("F_r (fluid on the held sphere)")
+    else:
+        ax.quiver([e["y"] for e in table], [e["z"] for e in table], [e["F_y"] for e in table],
+                  [e["F_z"] for e in table])
+        ax.set_xlabel("y")
+        ax.set_ylabel("z")
+        ax.set_aspect("equal")
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    sub = p.add_subparsers(dest="verb", required=True)
+    r = sub.add_parser("run", help="run the held sphere at every position, then write the table")
+    r.add_argument("case")
+    r.add_argument("--radii", help="comma-separated r/R (pipe)")
+    r.add_argument("--points", help="comma-separated y:z (duct)")
+    r.add_argument("--binary", default="build/eulerfsi")
+    r.add_argument("--jobs", type=int, default=2)
+    r.add_argument("--np", type=int, default=1)
+    r.add_argument("--mpirun", default="mpirun")
+    r.add_argument("--out-root", default="runs/liftmap")
+    r.add_argument("--set", action="append", default=[], metavar="KEY=VALUE")
+    r.add_argument("--average-from", type=float, default=0.5)
+    t = sub.add_parser("table", help="the table and plot of finished (or running) positions")
+    t.add_argument("out_root")
+    t.add_argument("--average-from", type=float, default=0.5)
+    args = p.parse_args(argv)
+    try:
+        if args.verb == "run":
+            case = read_case(args.case)
+            entries = positions(case, args.radii, args.points)
+            root = Path(args.out_root)
+            root.mkdir(parents=True, exist_ok=True)
+            (root / "liftmap_case.toml").write_text(Path(args.case).read_text())
+            with open(root / "liftmap_positions.csv", "w") as f:
+                f.write("position,y,z\n")
+                for name, y, z in entries:
+                    f.write(f"{name},{y!r},{z!r}\n")
+            failed = []
+            with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
+                futures = {}
+                for name, y, z in entries:
+                    out = root / name
+                    cmd = run_command(args.binary, args.case, case, out, y, z, args.np, args.mpirun, args.set)
+                    out.mkdir(parents=True, exist_ok=True)
+                    futures[pool.submit(run_one, cmd, root / f"{name}.log")] = name
+                for fut in concurrent.futures.as_completed(futures):
+                    rc = fut.result()
+                    print(f"{futures[fut]}: exit {rc}", flush=True)
+                    if rc != 0:
+                        failed.append(futures[fut])
+            done = [e for e in entries if e[0] not in failed]
+            if done:
+                write_table(case, root, done, args.average_from, args.radii is not None)
+            if failed:
+                print(f"failed: {', '.join(sorted(failed))} (logs in {root})", file=sys.stderr)
+                return 1
+            return 0
+        root = Path(args.out_root)
+        if not (root / "liftmap_positions.csv").exists():
+            raise LiftMapError(f"'{root}' is not a lift map's folder (no liftmap_positions.csv)")
+        case = read_case(root / "liftmap_case.toml")
+        with open(root / "liftmap_positions.csv") as f:
+            entries = [(row["position"], float(row["y"]), float(row["z"])) for row in csv.DictReader(f)]
+        entries = [e for e in entries if (root / e[0] / "particle.csv").exists()]
+        if not entries:
+            raise LiftMapError(f"no position in '{root}' has a particle.csv yet")
+        write_table(case, root, entries, args.average_from, entries[0][0].startswith("r"))
+        return 0
+    except LiftMapError as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())
