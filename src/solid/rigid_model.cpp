@@ -80,12 +80,15 @@ void RigidModel::set_initial_condition(SolidBody& body) {
   place(body);
 }
 
-// x_c^(k+1) = x_c^k + dt (gamma_k U^k + zeta_k U^(k-1)), U^k the body's velocity now (rigid
-// inside since the last substep's correction), its held components zero.
+// x_c^(k+1) = x_c^k + dt (gamma_k U^k + zeta_k U^(k-1)), U^k the translation the last correction
+// imposed (its held components zero); before the first correction, the fit of the velocity now.
 void RigidModel::advance_substep(SolidBody& body, const kernels::Velocity& vel, double dt, int substep) {
-  const RigidMotion fit =
-      fit_rigid_motion(kernels::rigid_moments(body.psi, vel, geometry(), grid_.cell_volume(), active_), comm_, held());
-  const double* U = fit.U;
+  if (!imposed_known_) {
+    imposed_ = fit_rigid_motion(kernels::rigid_moments(body.psi, vel, geometry(), grid_.cell_volume(), active_), comm_,
+                                held());
+    imposed_known_ = true;
+  }
+  const double* U = imposed_.U;
   const double a = dt * Rk3::gamma[substep], b = dt * Rk3::zeta[substep];
   for (int d = 0; d < 3; ++d) {
     centre_[d] += a * U[d] + b * velocity_[d];
@@ -100,26 +103,32 @@ void RigidModel::constrain_velocity(SolidBody& body, const kernels::Velocity& ve
   const double dv = grid_.cell_volume();
   const kernels::RigidMoments m = kernels::rigid_moments(body.psi, vel, g, dv, active_);
   const RigidMotion fit = fit_rigid_motion(m, comm_, held());
+  imposed_ = fit;
+  imposed_known_ = true;
   double impulse[3];
   kernels::rigid_blend(vel, body.psi, g, fit.U, fit.w, dv, active_, impulse);
   if (substep == 0) impulse_[0] = impulse_[1] = impulse_[2] = 0.0;
   for (int d = 0; d < 3; ++d) impulse_[d] += comm_.sum(impulse[d]);
   if (substep + 1 == Rk3::stages)
-    for (int d = 0; d < 3; ++d) force_[d] = impulse_[d] / dt;
+    for (int d = 0; d < 3; ++d) force_[d] = held()[d] ? impulse_[d] / dt : 0.0;  // a free direction's is round-off
 }
 
 std::map<std::string, double> RigidModel::checkpoint_scalars() const {
+  // the translation of the last correction moves the centre in the next substep: a restart needs it
   return {{"centre_x", centre_[0]}, {"centre_y", centre_[1]}, {"centre_z", centre_[2]},
-          {"hold_fx", force_[0]},   {"hold_fy", force_[1]},   {"hold_fz", force_[2]}};
+          {"hold_fx", force_[0]},   {"hold_fy", force_[1]},   {"hold_fz", force_[2]},
+          {"imposed_u", imposed_.U[0]}, {"imposed_v", imposed_.U[1]}, {"imposed_w", imposed_.U[2]}};
 }
 
 void RigidModel::restore_scalars(const std::map<std::string, double>& s) {
-  const char* names[6] = {"centre_x", "centre_y", "centre_z", "hold_fx", "hold_fy", "hold_fz"};
-  for (int n = 0; n < 6; ++n) {
+  const char* names[9] = {"centre_x", "centre_y", "centre_z", "hold_fx",  "hold_fy",
+                          "hold_fz",  "imposed_u", "imposed_v", "imposed_w"};
+  for (int n = 0; n < 9; ++n) {
     const auto it = s.find(names[n]);
     if (it == s.end()) throw std::runtime_error(std::string("checkpoint: the rigid body has no '") + names[n] + "'");
-    (n < 3 ? centre_[n] : force_[n - 3]) = it->second;
+    (n < 3 ? centre_[n] : n < 6 ? force_[n - 3] : imposed_.U[n - 6]) = it->second;
   }
+  imposed_known_ = true;
 }
 
 void RigidModel::fill_ghosts(SolidBody& body) {

@@ -16,6 +16,7 @@
 #include <array>
 
 #include "kernels/rigid_body.hpp"
+#include "solid/rigid_fit.hpp"
 #include "solid/solid_model.hpp"
 
 namespace eulerfsi {
@@ -50,6 +51,8 @@ class RigidModel final : public SolidModel {
   double impulse_[3] = {0, 0, 0};        // the constraint's impulse summed over this step's substeps
   std::array<double, 3> force_{0, 0, 0};  // its mean force over the last step
   Box active_, psi_box_;
+  RigidMotion imposed_;         // the rigid motion of the last correction
+  bool imposed_known_ = false;  // false until the first correction (and after a restart)
   Field3 scratch_[3];
 };
 
