@@ -73,6 +73,11 @@ def case_name(re, we, r0, visc, rest=False, appendix=False):
     return ("appendix_" if appendix else "") + name
 
 
+# The measured step of a paper-model particle in pipe flow, one core (bench/RESULTS.md, BM_Step
+# 128 x 64^2, particle:1): what the paper-resolution estimate scales.
+PAPER_MODEL_NS_PER_CELL_STEP = 588
+
+
 def case_text(res, re, we, r0, visc, rest, title):
     """The TOML of one run."""
     p = RESOLUTIONS[res]
@@ -88,8 +93,12 @@ def case_text(res, re, we, r0, visc, rest, title):
                 f"# {_CPU}.\n")
     else:
         cells = nx * ny * nz
-        cost = (f"# Cost: not measured at this resolution ({cells:,} cells); bench/RESULTS.md gives the cost of\n"
-                f"# a step per cell.\n")
+        # steps per time unit at the CFL limit of the laminar peak velocity 2 U_b (no elastic wave limit)
+        steps = 2.0 / (p["cfl"] * (1.0 / ny))
+        hours = cells * PAPER_MODEL_NS_PER_CELL_STEP * 1e-9 * steps / 3600.0
+        cost = (f"# Cost: not run at this resolution ({cells:,} cells). Estimated {hours:,.0f} core hours per time unit:\n"
+                f"# {PAPER_MODEL_NS_PER_CELL_STEP:g} ns per cell and step with a paper-model particle on one core (bench/RESULTS.md,\n"
+                f"# 128 x 64^2) x cells x {steps:,.0f} steps (CFL {p['cfl']:g} on 2 U_b; a stiff particle's wave speed adds steps).\n")
     return f"""# {title}
 # {p['note']}.
 # Alghalibi, Rosti & Brandt (2019): Re = {re}, We = {we:g}, r0/R = {r0}, mu_s/mu_f = {visc:g};
