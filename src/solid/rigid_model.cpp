@@ -72,13 +72,8 @@ void RigidModel::place(SolidBody& body) {
   active_ = intersection(psi_cells, grid_.interior());
 }
 
-void RigidModel::set_initial_condition(SolidBody& body) {
-  Kokkos::deep_copy(body.psi.data, 0.0);
-  psi_box_ = grid_.all();
-  set_identity(body.b);
-  set_identity(body.b_prev);
-  place(body);
-}
+// the configured centre is where the constructor put it
+void RigidModel::set_initial_condition(SolidBody& body) { fill_ghosts(body); }
 
 // x_c^(k+1) = x_c^k + dt (gamma_k U^k + zeta_k U^(k-1)), U^k the translation the last correction
 // imposed (its held components zero); before the first correction, the fit of the velocity now.
@@ -132,8 +127,7 @@ void RigidModel::restore_scalars(const std::map<std::string, double>& s) {
 }
 
 void RigidModel::fill_ghosts(SolidBody& body) {
-  // psi from the centre everywhere (a read may have left it on the whole slab), B = I
-  Kokkos::deep_copy(body.psi.data, 0.0);
+  // psi from the centre, zero everywhere else (a read may have left values on the whole slab), B = I
   psi_box_ = grid_.all();
   set_identity(body.b);
   set_identity(body.b_prev);
