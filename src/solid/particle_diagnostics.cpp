@@ -227,9 +227,9 @@ std::vector<ParticleState> ParticleTracker::measure(const SolidPhase& solids, co
     // a major axis along the radial direction is +pi/2 however round-off tilts it
     if (angle <= -M_PI / 2 + 1e-9) angle += M_PI;
     s.angle = angle;
-    if (body.cfg.model == SolidModelKind::Rigid) {
-      // a rigid sphere keeps its shape: what psi's moments show is the grid's imprint (D ~ 3e-3 at 8
-      // cells per d), and the orientation of a sphere's "major axis" is round-off
+    if (!body.model->elastic()) {
+      // a body without elastic stress is rigid and keeps its shape: what psi's moments show is the
+      // grid's imprint (D ~ 3e-3 at 8 cells per d), and a sphere's "major axis" is round-off
       s.taylor_D = 0.0;
       s.angle = 0.0;
       for (double& a : s.semi_axes) a = 0.5 * body.cfg.diameter;

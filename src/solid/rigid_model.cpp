@@ -6,7 +6,6 @@
 #include <vector>
 
 #include "kernels/elastic_force.hpp"
-#include "kernels/reference_map.hpp"
 #include "solid/paper_model.hpp"
 #include "solid/rigid_fit.hpp"
 #include "solver/rk3.hpp"
