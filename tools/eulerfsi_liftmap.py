@@ -1,16 +1,17 @@
 #!/usr/bin/python3
-"""Lift-force maps: a held rigid sphere at a list of positions, its cross-stream force against position.
+"""Lift-force maps: a held sphere at a list of positions, its cross-stream force against position.
 
-  eulerfsi_liftmap.py run CASE --radii 0.1,0.2,... [--binary build/eulerfsi] [--jobs 2] [--np 1]
+  eulerfsi_liftmap.py run CASE --radii 0.1,0.2,... [--model rigid] [--binary build/eulerfsi] [--jobs 2] [--np 1]
                           [--out-root runs/liftmap] [--set k=v ...] [--average-from 0.5]
   eulerfsi_liftmap.py run CASE --points y1:z1,y2:z2,... [...]        (a duct: positions in y, z)
   eulerfsi_liftmap.py table OUT_ROOT [--average-from 0.5]
 
 CASE holds one [[solid]] (solid[0]); each position runs as
-  [mpirun -np NP] BINARY run CASE --out OUT_ROOT/<position> --set solid[0].model="rigid"
+  [mpirun -np NP] BINARY run CASE --out OUT_ROOT/<position> --set solid[0].model=MODEL
       --set solid[0].constraint="radial" --set solid[0].center=[x, y, z] [--set k=v ...]
 with x from the case and (y, z) = (r R, 0) for --radii (R = Ly/2, r in units of R) or the given
-point. Positions run side by side, --jobs at a time. A position whose run dir holds a checkpoint
+point. MODEL is "rigid" (the default), "reference-map" or "paper": a soft sphere is held by a
+uniform body force over it (src/solid/radial_hold.hpp) and deforms freely. Positions run side by side, --jobs at a time. A position whose run dir holds a checkpoint
 continues from it (--restart), so a map is extended by raising time.t_end and running it again.
 
 The table (OUT_ROOT/liftmap.csv, liftmap.png) takes, per position, the mean over the last part of
@@ -69,11 +70,11 @@ def positions(case, radii, points):
     return out
 
 
-def run_command(binary, case_path, case, out_dir, y, z, np_, mpirun, sets):
+def run_command(binary, case_path, case, out_dir, y, z, np_, mpirun, sets, model="rigid"):
     x = case["solid"][0].get("center", [0.0, 0.0, 0.0])[0]
     cmd = [mpirun, "-np", str(np_)] if np_ > 1 else []
     cmd += [str(binary), "run", str(case_path), "--out", str(out_dir), "--quiet",
-            "--set", 'solid[0].model="rigid"', "--set", 'solid[0].constraint="radial"',
+            "--set", f'solid[0].model="{model}"', "--set", 'solid[0].constraint="radial"',
             "--set", f"solid[0].center=[{x!r}, {y!r}, {z!r}]"]
     for s in sets:
         cmd += ["--set", s]
@@ -193,6 +194,7 @@ def main(argv=None):
     r.add_argument("case")
     r.add_argument("--radii", help="comma-separated r/R (pipe)")
     r.add_argument("--points", help="comma-separated y:z (duct)")
+    r.add_argument("--model", default="rigid", choices=["rigid", "reference-map", "paper"])
     r.add_argument("--binary", default="build/eulerfsi")
     r.add_argument("--jobs", type=int, default=2)
     r.add_argument("--np", type=int, default=1)
@@ -220,7 +222,8 @@ def main(argv=None):
                 futures = {}
                 for name, y, z in entries:
                     out = root / name
-                    cmd = run_command(args.binary, args.case, case, out, y, z, args.np, args.mpirun, args.set)
+                    cmd = run_command(args.binary, args.case, case, out, y, z, args.np, args.mpirun, args.set,
+                                      args.model)
                     out.mkdir(parents=True, exist_ok=True)
                     futures[pool.submit(run_one, cmd, root / f"{name}.log")] = name
                 for fut in concurrent.futures.as_completed(futures):

@@ -484,10 +484,12 @@ void read_flow(const Reader& r, const toml::table& root, const DomainConfig& d, 
   r.get(t, "flow", "Re", f.Re);
   r.require(f.Re > 0, t, "flow", "Re", "must be > 0");
   const bool has_bulk = r.get(t, "flow", "bulk_velocity", f.bulk_velocity);
-  // Couette flow is driven by the walls and periodic flow by nothing: a flow rate would be ignored.
-  if (has_bulk && (d.geometry == Geometry::Couette || d.geometry == Geometry::Periodic))
+  // Couette flow is driven by the walls: a flow rate would be ignored. A periodic box has one only
+  // if it is given (the mean u over the box, held by a uniform pressure gradient along x).
+  if (has_bulk && d.geometry == Geometry::Couette)
     r.fail_value("flow.bulk_velocity", *t->get("bulk_velocity"),
-                 "not allowed with domain.geometry = " + geo + " (only pipe, duct and channel have a flow rate)");
+                 "not allowed with domain.geometry = " + geo + " (only pipe, duct, channel and periodic have a flow rate)");
+  f.periodic_flow_rate = has_bulk && d.geometry == Geometry::Periodic;
   r.get(t, "flow", "wall_velocity", f.wall_velocity);
   if (d.geometry != Geometry::Couette && (f.wall_velocity[0] != 0 || f.wall_velocity[1] != 0))
     r.fail_value("flow.wall_velocity", *t->get("wall_velocity"),
@@ -625,9 +627,12 @@ void read_solids(const Reader& r, const toml::table& root, const DomainConfig& d
     if (c.model == SolidModelKind::Rigid && c.sharpening > 0)
       r.fail(s + ".sharpening", s + ".sharpening = " + fmt_double(c.sharpening) + ": applies to " + s +
                                     ".model = \"paper\" only; a rigid body's psi never smears (remove it)");
-    if (c.model != SolidModelKind::Rigid && c.constraint != SolidConstraint::None)
-      r.fail(s + ".constraint", s + ".constraint = " + toml_str(to_string(c.constraint)) + ": a held body is " + s +
-                                    ".model = \"rigid\" (soft bodies are free: constraint = \"none\")");
+    // a soft body can be held at its (y, z) by a body force; fixing it whole would fight its deformation
+    if (c.model != SolidModelKind::Rigid && c.constraint == SolidConstraint::Fixed)
+      r.fail(s + ".constraint", s + ".constraint = \"fixed\": only " + s +
+                                    ".model = \"rigid\" can be fixed (a soft body allows \"none\" or \"radial\")");
+    if (c.constraint == SolidConstraint::Radial && c.shape != SolidShape::Sphere)
+      r.fail(s + ".constraint", s + ".constraint = \"radial\": holds a sphere's centre; a layer has none");
 
     if (c.shape == SolidShape::Layer) {
       if (d.geometry != Geometry::Channel && d.geometry != Geometry::Couette)
@@ -767,7 +772,7 @@ std::string to_toml(const CaseConfig& c) {
   os << "\n[flow]\n"
      << "Re = " << fmt_double(c.flow.Re) << "\n";
   // the parser refuses a flow rate for geometries that have none
-  if (c.domain.geometry != Geometry::Couette && c.domain.geometry != Geometry::Periodic)
+  if (c.domain.geometry != Geometry::Couette && (c.domain.geometry != Geometry::Periodic || c.flow.periodic_flow_rate))
     os << "bulk_velocity = " << fmt_double(c.flow.bulk_velocity) << "\n";
   os << "wall_velocity = " << arr(c.flow.wall_velocity) << "\n"
      << "wall_frequency = " << fmt_double(c.flow.wall_frequency) << "\n"

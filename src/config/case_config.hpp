@@ -30,7 +30,10 @@ struct DomainConfig {
 
 struct FlowConfig {
   double Re = 100.0;
-  double bulk_velocity = 1.0;                // constant flow rate (pipe, duct, channel)
+  double bulk_velocity = 1.0;                // constant flow rate (pipe, duct, channel; periodic if given)
+  // a periodic box is driven along x at bulk_velocity (the mean u over the box) only if the case
+  // gives it: a fixed body in a periodic array (Hasimoto's problem); otherwise nothing drives it
+  bool periodic_flow_rate = false;
   std::array<double, 2> wall_velocity{0, 0};  // couette: u at y = -Ly/2 and y = +Ly/2
   double wall_frequency = 0.0;               // > 0: wall velocity times sin(wall_frequency t)
   InitialFlow initial = InitialFlow::Laminar;
@@ -117,7 +120,7 @@ void check_build_supports(const CaseConfig& cfg);
 CaseConfig parse_case_string(const std::string& toml_text, const std::vector<std::string>& overrides = {},
                              const std::string& source_name = "<string>");
 // The resolved configuration as TOML (every key, defaults filled in): written into the run directory.
-// Keys the parser refuses for the geometry or shape (bulk_velocity for couette/periodic, thickness
+// Keys the parser refuses for the geometry or shape (bulk_velocity for couette and an undriven periodic box, thickness
 // for a sphere, diameter/center for a layer) are left out, so parse_case_string(to_toml(c)) == c.
 std::string to_toml(const CaseConfig& cfg);
 

@@ -133,7 +133,7 @@ std::vector<ParticleState> ParticleTracker::measure(const SolidPhase& solids, co
     const SolidBody& body = solids.bodies()[n];
     const Box box = body_box(body, grid_);
     ParticleState s;
-    const std::array<double, 3> hold = body.model->holding_force();
+    const std::array<double, 3> hold = holding_force(body);
     for (int d = 0; d < 3; ++d) s.hold_force[d] = hold[d];
     double whole[2];
     kernels::body_x_momentum(body.psi, flow.vel, box, whole);

@@ -12,6 +12,7 @@
 namespace eulerfsi {
 
 class SolidModel;
+class RadialHold;
 
 struct SolidBody {
   SolidConfig cfg;
@@ -20,7 +21,8 @@ struct SolidBody {
   WindowField psi;     // volume fraction (on the body's window, src/solid/solid_window.hpp)
   kernels::Tensor6 b;        // B at the current substep
   kernels::Tensor6 b_prev;   // B before the latest update (Crank-Nicolson average with b)
-  std::shared_ptr<SolidModel> model;  // how psi and B are carried (paper or reference map)
+  std::shared_ptr<SolidModel> model;  // how psi and B are carried (paper, reference map or rigid)
+  std::shared_ptr<RadialHold> hold;   // a soft body held at its (y, z) (constraint "radial"); else none
 };
 
 }  // namespace eulerfsi

@@ -7,6 +7,7 @@
 #include "core/launch.hpp"
 #include "kernels/elastic_force.hpp"
 #include "solid/paper_model.hpp"
+#include "solid/radial_hold.hpp"
 
 namespace eulerfsi {
 
@@ -19,6 +20,9 @@ SolidPhase::SolidPhase(const CaseConfig& cfg, const Grid& grid, const BoundaryCo
     body.mu_s = s.viscosity_ratio / cfg.flow.Re;
     body.model = make_solid_model(s, cfg, grid, bc, comm);
     body.model->allocate(body, grid);
+    // a rigid body holds itself (its model constrains its motion); a soft one through a body force
+    if (s.constraint == SolidConstraint::Radial && body.model->elastic())
+      body.hold = std::make_shared<RadialHold>(s, grid, comm);
     bodies_.push_back(std::move(body));
   }
 }
@@ -127,9 +131,17 @@ double SolidPhase::max_wave_speed() const {
   return c;
 }
 
+std::array<double, 3> holding_force(const SolidBody& body) {
+  return body.hold ? body.hold->force() : body.model->holding_force();
+}
+
 bool SolidPhase::constrain_velocity(const kernels::Velocity& vel, double dt, int substep) {
   bool any = false;
   for (auto& body : bodies_) {
+    if (body.hold) {
+      body.hold->apply(body, vel, dt, substep);
+      any = true;
+    }
     if (!body.model->constrains_velocity()) continue;
     body.model->constrain_velocity(body, vel, dt, substep);
     any = true;
@@ -172,9 +184,11 @@ std::vector<std::pair<std::string, Field3>> SolidPhase::checkpoint_fields() {
 
 std::vector<std::pair<std::string, double>> SolidPhase::checkpoint_scalars() const {
   std::vector<std::pair<std::string, double>> out;
-  for (size_t n = 0; n < bodies_.size(); ++n)
-    for (const auto& [name, v] : bodies_[n].model->checkpoint_scalars())
-      out.emplace_back("solid" + std::to_string(n) + "." + name, v);
+  for (size_t n = 0; n < bodies_.size(); ++n) {
+    auto scalars = bodies_[n].model->checkpoint_scalars();
+    if (bodies_[n].hold) scalars.merge(bodies_[n].hold->checkpoint_scalars());
+    for (const auto& [name, v] : scalars) out.emplace_back("solid" + std::to_string(n) + "." + name, v);
+  }
   return out;
 }
 
@@ -189,6 +203,7 @@ void SolidPhase::restore(const std::vector<std::pair<std::string, double>>& scal
     for (const auto& [key, v] : scalars)
       if (key.rfind(tag, 0) == 0) mine[key.substr(tag.size())] = v;
     bodies_[n].model->restore_scalars(mine);
+    if (bodies_[n].hold) bodies_[n].hold->restore_scalars(mine);
     bodies_[n].model->fill_ghosts(bodies_[n]);
   }
 }

@@ -2,6 +2,7 @@
 // The soft bodies of a case: each carries psi and B, moved by its own model (solid_model.hpp);
 // together they give the mixture viscosity and the elastic stress div[ sum_s psi_s G_s (B_s - I) ]
 // that the momentum equation feels (the SolidCoupling the flow solver sees).
+#include <array>
 #include <string>
 #include <utility>
 #include <vector>
@@ -72,6 +73,9 @@ class SolidPhase final : public SolidCoupling {
   Box mu_region_{{0, 0, 0}, {0, 0, 0}};  // where mixture_viscosity() last wrote
   std::vector<std::pair<WindowField*, Field3>> staged_;  // fields a checkpoint is read into
 };
+
+// The mean force over the last step that held the body where its constraint says (0 when free).
+std::array<double, 3> holding_force(const SolidBody& body);
 
 // The state a run starts from: the flow's initial condition, the bodies' shapes with B = I, zero
 // velocity inside bodies that start at rest, then one projection.

@@ -21,7 +21,8 @@ FlowSolver::FlowSolver(const CaseConfig& cfg, const Grid& grid, const Comm& comm
       rhs_old_{{grid.make_field("rhs_u_old"), grid.make_field("rhs_v_old"), grid.make_field("rhs_w_old")}},
       mu_(grid.make_field("mu")), no_wall_("no_wall", 1, grid.n[2] + 2 * kGhost), poisson_(make_poisson_solver(grid, comm.comm, cfg.solver.fft_planning)), mu_fluid_(1.0 / cfg.flow.Re) {
   const Geometry geo = cfg.domain.geometry;
-  impose_flow_rate_ = geo == Geometry::Pipe || geo == Geometry::Duct || geo == Geometry::Channel;
+  impose_flow_rate_ = geo == Geometry::Pipe || geo == Geometry::Duct || geo == Geometry::Channel ||
+                      (geo == Geometry::Periodic && cfg.flow.periodic_flow_rate);
   mu_explicit_ = mu_fluid_;
   if (cfg.time.implicit_viscosity) {
     helmholtz_ = make_helmholtz_solver(grid, comm.comm, cfg.solver.fft_planning);
