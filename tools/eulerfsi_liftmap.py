@@ -18,7 +18,8 @@ The table (OUT_ROOT/liftmap.csv, liftmap.png) takes, per position, the mean over
 the run (t >= average_from * t_last) of the force the fluid exerts on the body, F = -hold_F (the
 holding force's opposite), its radial part F_r = F . e_r, the spread of F_r over that window
 (half the difference of the means of its two halves: a drift bound), the slip u_p - u_f (u_f the
-laminar profile there) and the spin about e_x x e_r. For --radii it finds the zeros of F_r by
+laminar profile there) and the spin about e_x x e_r. Where every position lies on one ray from the
+axis (--radii; --points along a duct's wall bisector or diagonal) it finds the zeros of F_r by
 linear interpolation and their stability from the slope (dF_r/dr < 0: stable).
 Exit code: 0 done, 1 a run failed, 2 a usage error.
 """
@@ -96,12 +97,24 @@ def read_rows(path):
 
 
 def laminar_u(case, y, z):
-    """The laminar profile at (y, z): the pipe's 2 U_b (1 - r^2 / R^2); elsewhere not known here."""
+    """The laminar profile at (y, z): the pipe's 2 U_b (1 - r^2 / R^2) (R = 1/2); the rectangular
+    duct's series (half-widths a, b; e.g. White, Viscous Fluid Flow, sec. 3-3), 40 odd terms:
+      u ~ sum (-1)^((n-1)/2) [1 - cosh(n pi z / 2a) / cosh(n pi b / 2a)] cos(n pi y / 2a) / n^3,
+      its mean ~ (a^2 / 3) [1 - 192 a / (pi^5 b) sum tanh(n pi b / 2a) / n^5] / (16 a^2 / pi^3);
+    other geometries: not known here (nan)."""
     geo = case.get("domain", {}).get("geometry", "pipe")
     ub = case.get("flow", {}).get("bulk_velocity", 1.0)
-    if geo != "pipe":
+    if geo == "pipe":
+        return 2.0 * ub * (1.0 - 4.0 * (y * y + z * z))
+    if geo != "duct":
         return float("nan")
-    return 2.0 * ub * (1.0 - 4.0 * (y * y + z * z))
+    length = case.get("domain", {}).get("length", [3.0, 1.0, 1.0])
+    a, b = length[1] / 2, length[2] / 2
+    odd = range(1, 80, 2)
+    shape = sum((-1) ** ((n - 1) // 2) * (1 - math.cosh(n * math.pi * z / (2 * a)) / math.cosh(n * math.pi * b / (2 * a)))
+                * math.cos(n * math.pi * y / (2 * a)) / n ** 3 for n in odd) * 16 * a * a / math.pi ** 3
+    mean = a * a / 3 * (1 - 192 * a / (math.pi ** 5 * b) * sum(math.tanh(n * math.pi * b / (2 * a)) / n ** 5 for n in odd))
+    return ub * shape / mean
 
 
 def summarise(case, run_dir, y, z, average_from):
@@ -141,6 +154,13 @@ def zeros(table):
             r = a["r_over_R"] if fa == 0.0 else a["r_over_R"] + (b["r_over_R"] - a["r_over_R"]) * fa / (fa - fb)
             out.append((r, fb < fa))  # F_r falling through zero: pushed back from both sides
     return out
+
+
+def on_one_ray(entries):
+    """True when every position lies on one ray from the axis (a pipe's radii, a duct's wall
+    bisector or diagonal): F_r along it then has zeros to find."""
+    dirs = [(y / math.hypot(y, z), z / math.hypot(y, z)) for _, y, z in entries if math.hypot(y, z) > 0]
+    return all(abs(a[0] - dirs[0][0]) < 1e-9 and abs(a[1] - dirs[0][1]) < 1e-9 for a in dirs)
 
 
 def write_table(case, root, entries, average_from, radial):
@@ -233,7 +253,7 @@ def main(argv=None):
                         failed.append(futures[fut])
             done = [e for e in entries if e[0] not in failed]
             if done:
-                write_table(case, root, done, args.average_from, args.radii is not None)
+                write_table(case, root, done, args.average_from, on_one_ray(done))
             if failed:
                 print(f"failed: {', '.join(sorted(failed))} (logs in {root})", file=sys.stderr)
                 return 1
@@ -247,7 +267,7 @@ def main(argv=None):
         entries = [e for e in entries if (root / e[0] / "particle.csv").exists()]
         if not entries:
             raise LiftMapError(f"no position in '{root}' has a particle.csv yet")
-        write_table(case, root, entries, args.average_from, entries[0][0].startswith("r"))
+        write_table(case, root, entries, args.average_from, on_one_ray(entries))
         return 0
     except LiftMapError as e:
         print(f"error: {e}", file=sys.stderr)
