@@ -5,12 +5,14 @@
                           [--out-root runs/liftmap] [--set k=v ...] [--average-from 0.5]
   eulerfsi_liftmap.py run CASE --points y1:z1,y2:z2,... [...]        (a duct: positions in y, z)
   eulerfsi_liftmap.py table OUT_ROOT [--average-from 0.5]
+  eulerfsi_liftmap.py compare OUT_ROOT:LABEL [OUT_ROOT:LABEL ...] --out FIGURE.png
 
 CASE holds one [[solid]] (solid[0]); each position runs as
   [mpirun -np NP] BINARY run CASE --out OUT_ROOT/<position> --set solid[0].model=MODEL
       --set solid[0].constraint="radial" --set solid[0].center=[x, y, z] [--set k=v ...]
 with x from the case and (y, z) = (r R, 0) for --radii (R = Ly/2, r in units of R) or the given
-point. MODEL is "rigid" (the default), "reference-map" or "paper": a soft sphere is held by a
+point. Each run gets OMP_NUM_THREADS = cores / (jobs x np) unless the environment sets it.
+MODEL is "rigid" (the default), "reference-map" or "paper": a soft sphere is held by a
 uniform body force over it (src/solid/radial_hold.hpp) and deforms freely. Positions run side by side, --jobs at a time. A position whose run dir holds a checkpoint
 continues from it (--restart), so a map is extended by raising time.t_end and running it again.
 
@@ -21,12 +23,15 @@ holding force's opposite), its radial part F_r = F . e_r, the spread of F_r over
 laminar profile there) and the spin about e_x x e_r. Where every position lies on one ray from the
 axis (--radii; --points along a duct's wall bisector or diagonal) it finds the zeros of F_r by
 linear interpolation and their stability from the slope (dF_r/dr < 0: stable).
+`compare` draws the F_r of several finished maps (their liftmap.csv, liftmap_zeros.csv) on one
+figure, each with its label (e.g. "Re = 100, 8 cells per d"), the zeros marked (filled: stable).
 Exit code: 0 done, 1 a run failed, 2 a usage error.
 """
 import argparse
 import concurrent.futures
 import csv
 import math
+import os
 import subprocess
 import sys
 import tomllib
@@ -84,11 +89,13 @@ def run_command(binary, case_path, case, out_dir, y, z, np_, mpirun, sets, model
     return cmd
 
 
-def run_one(cmd, log):
+def run_one(cmd, log, threads):
+    env = dict(os.environ)
+    env.setdefault("OMP_NUM_THREADS", str(threads))  # the caller's setting wins
     with open(log, "w") as f:
         f.write(" ".join(cmd) + "\n")
         f.flush()
-        return subprocess.run(cmd, stdout=f, stderr=subprocess.STDOUT).returncode
+        return subprocess.run(cmd, stdout=f, stderr=subprocess.STDOUT, env=env).returncode
 
 
 def read_rows(path):
@@ -207,6 +214,38 @@ def plot(table, found, path, radial):
     plt.close(fig)
 
 
+def compare(pairs, out):
+    """F_r against r/R of several maps on one figure."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(6.0, 4.0))
+    for spec in pairs:
+        root, _, label = spec.partition(":")
+        root = Path(root)
+        if not (root / "liftmap.csv").exists():
+            raise LiftMapError(f"'{root}' has no liftmap.csv (run the map, or its table verb, first)")
+        with open(root / "liftmap.csv") as fh:
+            table = list(csv.DictReader(fh))
+        r = [float(e["r_over_R"]) for e in table]
+        f = [float(e["F_r"]) for e in table]
+        err = [float(e["F_r_spread"]) for e in table]
+        line = ax.errorbar(r, f, yerr=err, marker="o", ms=4, capsize=2, label=label or root.name)
+        colour = line[0].get_color()
+        if (root / "liftmap_zeros.csv").exists():
+            for z in csv.DictReader(open(root / "liftmap_zeros.csv")):
+                stable = z["stable"] == "1"
+                ax.plot([float(z["r_over_R"])], [0.0], marker="o", ms=8, mec=colour, mfc=colour if stable else "w", ls="none")
+    ax.axhline(0.0, color="0.6", lw=0.8)
+    ax.set_xlabel("r / R")
+    ax.set_ylabel("F_r / (rho U_b^2 D^2)")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out, dpi=120)
+    plt.close(fig)
+    print(f"wrote {out}")
+
+
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     sub = p.add_subparsers(dest="verb", required=True)
@@ -222,11 +261,17 @@ def main(argv=None):
     r.add_argument("--out-root", default="runs/liftmap")
     r.add_argument("--set", action="append", default=[], metavar="KEY=VALUE")
     r.add_argument("--average-from", type=float, default=0.5)
+    c = sub.add_parser("compare", help="several finished maps on one figure")
+    c.add_argument("maps", nargs="+", metavar="OUT_ROOT:LABEL")
+    c.add_argument("--out", required=True)
     t = sub.add_parser("table", help="the table and plot of finished (or running) positions")
     t.add_argument("out_root")
     t.add_argument("--average-from", type=float, default=0.5)
     args = p.parse_args(argv)
     try:
+        if args.verb == "compare":
+            compare(args.maps, args.out)
+            return 0
         if args.verb == "run":
             case = read_case(args.case)
             entries = positions(case, args.radii, args.points)
@@ -238,6 +283,8 @@ def main(argv=None):
                 for name, y, z in entries:
                     f.write(f"{name},{y!r},{z!r}\n")
             failed = []
+            # the cores shared out: OpenMP threads that outnumber them spin against each other
+            threads = max(1, (os.cpu_count() or 1) // (max(1, args.jobs) * max(1, args.np)))
             with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
                 futures = {}
                 for name, y, z in entries:
@@ -245,7 +292,7 @@ def main(argv=None):
                     cmd = run_command(args.binary, args.case, case, out, y, z, args.np, args.mpirun, args.set,
                                       args.model)
                     out.mkdir(parents=True, exist_ok=True)
-                    futures[pool.submit(run_one, cmd, root / f"{name}.log")] = name
+                    futures[pool.submit(run_one, cmd, root / f"{name}.log", threads)] = name
                 for fut in concurrent.futures.as_completed(futures):
                     rc = fut.result()
                     print(f"{futures[fut]}: exit {rc}", flush=True)
