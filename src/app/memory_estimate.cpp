@@ -9,6 +9,7 @@
 #include <hip/hip_runtime.h>
 #endif
 #include "solid/reference_map_model.hpp"
+#include "solid/rigid_model.hpp"
 
 namespace eulerfsi {
 
@@ -30,7 +31,8 @@ constexpr double kImplicitViscosityFields = 2.0;
 // Field snapshots: total psi, the elastic energy density and the three centred velocity components.
 constexpr double kSnapshotFields = 5.0;
 // Every body: psi, B and B before the update (6 + 6) (src/solid/solid_body.hpp): on the whole
-// slab for the paper model, on the body's window for the reference map (src/solid/solid_window.hpp).
+// slab for the paper model, on the body's window for the reference map and the rigid body
+// (src/solid/solid_window.hpp).
 constexpr double kBodyFields = 13.0;
 // The model's own: RK3 rhs and memory of psi and B (paper), or of q = xi - x (3 + 3 + 3), its
 // level and the diagnostics' psi at a second edge width (map, on the window).
@@ -39,6 +41,8 @@ constexpr double kReferenceMapFields = 11.0;
 // What reading a checkpoint (a restart) puts on the whole slab for a reference-map body before it
 // moves onto its window: psi, B, q and its level (writing packs from the window directly).
 constexpr double kReferenceMapStoredFields = 11.0;
+// ... and for a rigid body: psi and B.
+constexpr double kRigidStoredFields = 7.0;
 // Allocator and library overhead (FFTW plans, MPI buffers, the Kokkos runtime) on top.
 constexpr double kOverheadBytes = 64.0 * 1024 * 1024;
 
@@ -116,9 +120,11 @@ MemoryEstimate estimate_memory(const CaseConfig& cfg, const Grid& grid) {
                   (cfg.output.fields_every > 0 ? kSnapshotFields : 0.0) +
                   (cfg.time.implicit_viscosity ? kImplicitViscosityFields : 0.0);
   for (const auto& s : cfg.solids) {
-    if (s.model == SolidModelKind::Rigid) {  // psi, B and B_prev on the whole slab, nothing else
-      m.solid_fields += kBodyFields;
-      m.solid_peak_fields += kBodyFields;
+    if (s.model == SolidModelKind::Rigid) {  // psi, B and B_prev on the window, nothing else
+      m.solid_fields += kBodyFields * RigidModel::window_cells(s, grid, false) / m.slab_cells;
+      m.solid_peak_fields +=
+          kBodyFields * RigidModel::window_cells(s, grid, !cfg.flow.frame_follows_particle) / m.slab_cells +
+          kRigidStoredFields;
       continue;
     }
     if (s.model == SolidModelKind::Paper) {

@@ -26,7 +26,7 @@ double wrap(double x, double period) {
 }  // namespace
 
 RigidModel::RigidModel(const SolidConfig& solid, const CaseConfig&, const Grid& grid, const Comm& comm)
-    : cfg_solid_(solid), grid_(grid), comm_(comm) {
+    : cfg_solid_(solid), grid_(grid), comm_(comm), window_(grid, comm) {
   for (int d = 0; d < 3; ++d) centre_[d] = solid.center[d];
   centre_[0] = wrap(centre_[0], grid.length[0]);
 }
@@ -51,9 +51,40 @@ kernels::RigidGeometry RigidModel::geometry() const {
   return g;
 }
 
+// psi (0 outside), B and B_prev (I outside): B is I everywhere, stored because the shared kernels read it.
+std::vector<SolidWindow::Member> RigidModel::window_members(SolidBody& body) const {
+  std::vector<SolidWindow::Member> m = {{&body.psi, 0.0, "psi"}};
+  for (int c = 0; c < kernels::kTensorComponents; ++c) {
+    const double identity = c < 3 ? 1.0 : 0.0;
+    m.push_back({&body.b.c[c], identity, "B"});
+    m.push_back({&body.b_prev.c[c], identity, "B_prev"});
+  }
+  return m;
+}
+
+void RigidModel::allocate(SolidBody& body, const Grid&) { place(body); }
+
+double RigidModel::window_cells(const SolidConfig& s, const Grid& g, bool x_whole) {
+  const double reach = 0.5 * s.diameter + kHalfWidthCells * std::fmax(g.h[0], std::fmax(g.h[1], g.h[2]));
+  Box need;
+  for (int d = 0; d < 3; ++d) {  // place()'s cells grown by the window's layer, x in global storage indices
+    const double lo = s.center[d] - reach - g.domain_lo(d), hi = s.center[d] + reach - g.domain_lo(d);
+    need.lo[d] = int(std::floor(lo / g.h[d])) - 2 + kGhost;
+    need.hi[d] = int(std::floor(hi / g.h[d])) + 3 + kGhost;
+  }
+  Box w = SolidWindow::placement(g, need);
+  if (x_whole) {
+    w.lo[0] = 0;
+    w.hi[0] = g.n[0] + 2 * kGhost;
+  }
+  return double(SolidWindow::local_part(g, w).size());
+}
+
 // psi differs from 0 only within a + eps of the centre: its storage cells there (a whole direction
 // where the reach wraps around a periodic end), ghosts included; the active box is their owned part.
-void RigidModel::place(SolidBody& body) {
+// The window holds them and one more layer (a face's psi reads the next cell); psi is written on
+// the whole window, so a move leaves nothing stale.
+void RigidModel::place(SolidBody& body, bool always_move) {
   const kernels::RigidGeometry g = geometry();
   const double reach = g.radius + g.eps;
   Box psi_cells = grid_.all();
@@ -65,8 +96,8 @@ void RigidModel::place(SolidBody& body) {
     psi_cells.lo[d] = std::max(0, std::min(first, grid_.ext(d)));
     psi_cells.hi[d] = std::max(psi_cells.lo[d], std::min(last, grid_.ext(d)));
   }
-  kernels::fill_box(body.psi.data, 0.0, psi_box_);
-  kernels::rigid_sphere_psi(body.psi, g, psi_cells);
+  window_.hold(psi_cells.grown(1, grid_.all()), window_members(body), always_move);
+  kernels::rigid_sphere_psi(body.psi, g, window_.local());
   psi_box_ = psi_cells;
   active_ = intersection(psi_cells, grid_.interior());
 }
@@ -126,11 +157,10 @@ void RigidModel::restore_scalars(const std::map<std::string, double>& s) {
 }
 
 void RigidModel::fill_ghosts(SolidBody& body) {
-  // psi from the centre, zero everywhere else (a read may have left values on the whole slab), B = I
-  psi_box_ = grid_.all();
+  // a read leaves the fields on the whole slab: back onto the window, psi from the centre, B = I
+  place(body, true);
   set_identity(body.b);
   set_identity(body.b_prev);
-  place(body);
 }
 
 }  // namespace eulerfsi

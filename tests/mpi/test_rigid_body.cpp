@@ -75,7 +75,13 @@ std::pair<double, double> strain_inside(const test::CoupledCase& run) {
   auto u = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), vel.c[0]);
   auto v = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), vel.c[1]);
   auto w = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), vel.c[2]);
-  auto psi = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), run.solids.bodies()[0].psi.data);
+  const WindowField& body_psi = run.solids.bodies()[0].psi;
+  auto psi_data = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), body_psi.data);
+  const Box win = body_psi.window();
+  auto psi = [&](int i, int j, int k) {  // psi on its window, 0 outside it
+    const bool in = i >= win.lo[0] && i < win.hi[0] && j >= win.lo[1] && j < win.hi[1] && k >= win.lo[2] && k < win.hi[2];
+    return in ? psi_data(i - win.lo[0], j - win.lo[1], k - win.lo[2]) : 0.0;
+  };
   const Box b = g.interior();
   double strain = 0.0, speed = 0.0;
   for (int i = b.lo[0]; i < b.hi[0] - 1; ++i)

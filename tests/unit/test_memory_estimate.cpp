@@ -34,7 +34,7 @@ double resident_bytes() {
 }
 
 // 0: the flow alone, 1: one paper-model body, 2: one reference-map body, 3: the flow with
-// time.implicit_viscosity
+// time.implicit_viscosity, 4: one rigid body
 CaseConfig pipe(int particle) {
   CaseConfig cfg = test::small_case(Geometry::Pipe, 96, 48, 48, 2.0, 1.0, 1.0, 100.0, InitialFlow::Laminar);
   if (particle == 3) {
@@ -46,7 +46,7 @@ CaseConfig pipe(int particle) {
     s.diameter = 0.2;
     s.center = {1.0, 0.14, 0.0};
     s.We = 1.0;
-    s.model = particle == 1 ? SolidModelKind::Paper : SolidModelKind::ReferenceMap;
+    s.model = particle == 1 ? SolidModelKind::Paper : particle == 4 ? SolidModelKind::Rigid : SolidModelKind::ReferenceMap;
     cfg.solids.push_back(s);
   }
   return cfg;
@@ -82,10 +82,10 @@ TEST_P(MemoryEstimateTest, CoversWhatARunTakes) {
 }
 
 #ifdef EULERFSI_HAVE_MPI
-INSTANTIATE_TEST_SUITE_P(FlowPaperReferenceMap, MemoryEstimateTest, ::testing::Values(0, 1, 2, 3));
+INSTANTIATE_TEST_SUITE_P(FlowPaperReferenceMap, MemoryEstimateTest, ::testing::Values(0, 1, 2, 3, 4));
 #else
 // time.implicit_viscosity needs the FFTW-MPI transforms
-INSTANTIATE_TEST_SUITE_P(FlowPaperReferenceMap, MemoryEstimateTest, ::testing::Values(0, 1, 2));
+INSTANTIATE_TEST_SUITE_P(FlowPaperReferenceMap, MemoryEstimateTest, ::testing::Values(0, 1, 2, 4));
 #endif
 
 // Issue 8's bound: one reference-map particle (d = D/5, 9.6 cells across) needs at most 1.3x the
@@ -101,6 +101,19 @@ TEST(MemoryEstimate, AReferenceMapParticleNeedsAtMost1_3xTheFlow) {
   std::printf("flow %.1f MiB, with a reference-map particle %.1f MiB: %.2fx\n", flow / 1048576.0,
               with_particle / 1048576.0, with_particle / flow);
   EXPECT_LE(with_particle, 1.3 * flow);
+}
+
+// A rigid body stores psi, B and B_prev on its window too: the flow's memory and a little more.
+TEST(MemoryEstimate, ARigidParticleNeedsAtMost1_1xTheFlow) {
+  if (!Kokkos::SpaceAccessibility<Kokkos::HostSpace, MemSpace>::accessible)
+    GTEST_SKIP() << "the fields live in GPU memory, which the resident set does not show";
+  ASSERT_TRUE(kFixedMmapThreshold);
+  double flow = 0.0, with_particle = 0.0, estimate = 0.0;
+  measure(pipe(0), flow, estimate);
+  measure(pipe(4), with_particle, estimate);
+  std::printf("flow %.1f MiB, with a rigid particle %.1f MiB: %.2fx\n", flow / 1048576.0, with_particle / 1048576.0,
+              with_particle / flow);
+  EXPECT_LE(with_particle, 1.1 * flow);
 }
 
 TEST(MemoryEstimate, RefusesWhatCannotFit) {
