@@ -32,7 +32,7 @@ const std::vector<Section>& schema() {
       {"flow", {"Re", "bulk_velocity", "wall_velocity", "wall_frequency", "initial", "penalization_eta", "pipe_wall",
                 "frame_velocity"}},
       {"time", {"cfl", "dt", "t_end", "max_steps", "implicit_viscosity"}},
-      {"solver", {"fft_planning"}},
+      {"solver", {"fft_planning", "reproject_constrained"}},
       {"output", {"dir", "every", "fields_every", "profiles_every", "checkpoint_every", "shape_times"}},
       {"solid", {"shape", "diameter", "center", "thickness", "We", "viscosity_ratio", "initial_velocity", "sharpening", "model", "map_margin", "b_extension", "constraint"}},
   };
@@ -540,6 +540,7 @@ void read_time(const Reader& r, const toml::table& root, TimeConfig& c) {
 void read_solver(const Reader& r, const toml::table& root, SolverConfig& s) {
   const toml::table* t = r.section(root, "solver");
   r.get(t, "solver", "fft_planning", s.fft_planning, kFftPlannings);
+  r.get(t, "solver", "reproject_constrained", s.reproject_constrained);
 }
 
 void read_output(const Reader& r, const toml::table& root, OutputConfig& o) {
@@ -788,7 +789,8 @@ std::string to_toml(const CaseConfig& c) {
      << "max_steps = " << c.time.max_steps << "\n"
      << "implicit_viscosity = " << (c.time.implicit_viscosity ? "true" : "false") << "\n";
   os << "\n[solver]\n"
-     << "fft_planning = " << toml_str(to_string(c.solver.fft_planning)) << "\n";
+     << "fft_planning = " << toml_str(to_string(c.solver.fft_planning)) << "\n"
+     << "reproject_constrained = " << (c.solver.reproject_constrained ? "true" : "false") << "\n";
   os << "\n[output]\n"
      << "dir = " << toml_str(c.output.dir) << "\n"
      << "every = " << c.output.every << "\n"

@@ -226,8 +226,8 @@ void FlowSolver::advance(double t, double dt, SolidCoupling* solids) {
     // gradient times alpha dt
     double du = project(alpha_dt, {state_.p_step, Rk3::alpha(s), s == 0});
     // rigid bodies: the velocity inside made rigid, then divergence-free again (its pressure, the
-    // rigidity's, joins the step's)
-    if (solids && solids->constrain_velocity(vel, dt, s)) {
+    // rigidity's, joins the step's) unless solver.reproject_constrained = false
+    if (solids && solids->constrain_velocity(vel, dt, s) && cfg_.solver.reproject_constrained) {
       bc_.fill_divergence_stencil(vel);
       du += project(alpha_dt, {state_.p_step, Rk3::alpha(s), false});
     }
