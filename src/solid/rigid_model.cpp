@@ -16,6 +16,8 @@ namespace {
 
 // psi's smoothed edge: the reference map's half-width, so both models' spheres look alike
 constexpr double kHalfWidthCells = 1.5;
+// cells the window holds beyond psi's: the reach of the stencils that read around the active box
+constexpr int kWindowReach = kGhost + 1;
 
 double wrap(double x, double period) {
   if (period <= 0.0) return x;
@@ -67,10 +69,10 @@ void RigidModel::allocate(SolidBody& body, const Grid&) { place(body); }
 double RigidModel::window_cells(const SolidConfig& s, const Grid& g, bool x_whole) {
   const double reach = 0.5 * s.diameter + kHalfWidthCells * std::fmax(g.h[0], std::fmax(g.h[1], g.h[2]));
   Box need;
-  for (int d = 0; d < 3; ++d) {  // place()'s cells grown by the window's layer, x in global storage indices
+  for (int d = 0; d < 3; ++d) {  // place()'s cells grown by the window's reach, x in global storage indices
     const double lo = s.center[d] - reach - g.domain_lo(d), hi = s.center[d] + reach - g.domain_lo(d);
-    need.lo[d] = int(std::floor(lo / g.h[d])) - 2 + kGhost;
-    need.hi[d] = int(std::floor(hi / g.h[d])) + 3 + kGhost;
+    need.lo[d] = int(std::floor(lo / g.h[d])) - 1 - kWindowReach + kGhost;
+    need.hi[d] = int(std::floor(hi / g.h[d])) + 2 + kWindowReach + kGhost;
   }
   Box w = SolidWindow::placement(g, need);
   if (x_whole) {
@@ -82,8 +84,9 @@ double RigidModel::window_cells(const SolidConfig& s, const Grid& g, bool x_whol
 
 // psi differs from 0 only within a + eps of the centre: its storage cells there (a whole direction
 // where the reach wraps around a periodic end), ghosts included; the active box is their owned part.
-// The window holds them and one more layer (a face's psi reads the next cell); psi is written on
-// the whole window, so a move leaves nothing stale.
+// The window holds them and the reach of every stencil read around the active box (the
+// diagnostics' force terms read psi and B up to kGhost + 1 cells away); psi is written on the whole
+// window, so a move leaves nothing stale.
 void RigidModel::place(SolidBody& body, bool always_move) {
   const kernels::RigidGeometry g = geometry();
   const double reach = g.radius + g.eps;
@@ -96,7 +99,7 @@ void RigidModel::place(SolidBody& body, bool always_move) {
     psi_cells.lo[d] = std::max(0, std::min(first, grid_.ext(d)));
     psi_cells.hi[d] = std::max(psi_cells.lo[d], std::min(last, grid_.ext(d)));
   }
-  window_.hold(psi_cells.grown(1, grid_.all()), window_members(body), always_move);
+  window_.hold(psi_cells.grown(kWindowReach, grid_.all()), window_members(body), always_move);
   kernels::rigid_sphere_psi(body.psi, g, window_.local());
   psi_box_ = psi_cells;
   active_ = intersection(psi_cells, grid_.interior());
