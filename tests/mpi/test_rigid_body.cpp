@@ -212,3 +212,26 @@ TEST(RigidBody, KeepsTheExplicitViscousLimitWithImplicitViscosity) {
   test::CoupledCase soft(cfg);
   EXPECT_GT(soft.flow.stable_dt(), 2.0 * explicit_limit);
 }
+
+// The diagnostics read psi and B up to kGhost + 1 cells around a body's active box (the force
+// terms' stencils): the window that stores them must hold that reach wherever the body is, next to
+// the wall included (a window one cell wider than psi let a free sphere near the wall read outside
+// its allocation). The same holds for the reference map's window.
+TEST(RigidBody, WindowHoldsTheStencilReachAroundTheBody) {
+  for (SolidModelKind model : {SolidModelKind::Rigid, SolidModelKind::ReferenceMap}) {
+    for (double y : {0.0, 0.2, 0.26}) {  // a = 0.225: 0.26 leaves a gap of 0.015 (0.4 h) to the wall
+      CaseConfig cfg = rigid_case(SolidConstraint::None);
+      cfg.solids[0].model = model;
+      cfg.solids[0].center = {0.5, y, 0.0};
+      test::CoupledCase run(cfg);
+      const SolidBody& body = run.solids.bodies()[0];
+      const Box active = body.model->active_box();
+      if (active.empty()) continue;  // not on this rank
+      const Box need = active.grown(kGhost + 1, run.grid.all()), have = body.psi.window();
+      for (int d = 0; d < 3; ++d) {
+        EXPECT_LE(have.lo[d], need.lo[d]) << to_string(model) << " at y = " << y << ", direction " << d;
+        EXPECT_GE(have.hi[d], need.hi[d]) << to_string(model) << " at y = " << y << ", direction " << d;
+      }
+    }
+  }
+}
