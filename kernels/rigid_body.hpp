@@ -43,6 +43,7 @@ struct RigidMoments {
   enum { Count = 24 };
   double mass[3], momentum[3], angular[3], inertia[kTensorComponents], first[3][3];
 };
+static_assert(sizeof(RigidMoments) == RigidMoments::Count * sizeof(double), "RigidMoments: doubles in a row");
 
 namespace detail {
 
@@ -65,33 +66,62 @@ KOKKOS_INLINE_FUNCTION void lever(const double r[3], int comp, double q[3]) {
   q[2] = comp == 1 ? r[0] : (comp == 0 ? -r[1] : 0.0);
 }
 
-// One of RigidMoments' sums (what = its index in the struct's order).
-struct RigidMomentTerm {
+// Kokkos custom reducer summing RigidMoments field by field (one pass over the box instead of one
+// per sum). Kokkos 3.4 joins through volatile references and 4.x rejects them: both overloads
+// (docs: STYLE, "custom reducers").
+struct RigidMomentsReducer {
+  using reducer = RigidMomentsReducer;
+  using value_type = RigidMoments;
+  using result_view_type = Kokkos::View<value_type, Kokkos::HostSpace, Kokkos::MemoryUnmanaged>;
+
+  value_type* value;
+  explicit RigidMomentsReducer(value_type& v) : value(&v) {}
+
+  template <class D, class S>
+  KOKKOS_INLINE_FUNCTION static void add(D& dst, const S& src) {
+    for (int d = 0; d < 3; ++d) {
+      dst.mass[d] += src.mass[d];
+      dst.momentum[d] += src.momentum[d];
+      dst.angular[d] += src.angular[d];
+      for (int a = 0; a < 3; ++a) dst.first[d][a] += src.first[d][a];
+    }
+    for (int t = 0; t < kTensorComponents; ++t) dst.inertia[t] += src.inertia[t];
+  }
+  KOKKOS_INLINE_FUNCTION void join(value_type& dst, const value_type& src) const { add(dst, src); }
+  KOKKOS_INLINE_FUNCTION void join(volatile value_type& dst, const volatile value_type& src) const { add(dst, src); }
+  KOKKOS_INLINE_FUNCTION void init(value_type& v) const {
+    for (int d = 0; d < 3; ++d) {
+      v.mass[d] = v.momentum[d] = v.angular[d] = 0.0;
+      for (int a = 0; a < 3; ++a) v.first[d][a] = 0.0;
+    }
+    for (int t = 0; t < kTensorComponents; ++t) v.inertia[t] = 0.0;
+  }
+  KOKKOS_INLINE_FUNCTION value_type& reference() const { return *value; }
+  result_view_type view() const { return result_view_type(value); }
+  KOKKOS_INLINE_FUNCTION bool references_scalar() const { return true; }
+};
+
+// Every sum of RigidMoments from the three faces of one cell (faces where psi = 0 add nothing).
+struct RigidMomentTerms {
   WindowField psi;
   Field3 u[3];
   RigidGeometry g;
-  int what;
-  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k, double& acc) const {
-    if (what < 6) {
-      const int comp = what % 3;
-      const double p = face_psi(psi, comp, i, j, k);
-      acc += what < 3 ? p : p * u[comp](i, j, k);
-      return;
-    }
-    if (what >= 15) {
-      const int comp = (what - 15) / 3, a = (what - 15) % 3;
-      double r[3];
-      face_offset(g, comp, i, j, k, r);
-      acc += face_psi(psi, comp, i, j, k) * r[a];
-      return;
-    }
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k, RigidMoments& acc) const {
     const int ra[6] = {0, 1, 2, 0, 0, 1}, rb[6] = {0, 1, 2, 1, 2, 2};
     for (int comp = 0; comp < 3; ++comp) {
+      const double p = face_psi(psi, comp, i, j, k);
+      if (p == 0.0) continue;
       double r[3], q[3];
       face_offset(g, comp, i, j, k, r);
       lever(r, comp, q);
-      const double p = face_psi(psi, comp, i, j, k);
-      acc += what < 9 ? p * q[what - 6] * u[comp](i, j, k) : p * q[ra[what - 9]] * q[rb[what - 9]];
+      const double uc = u[comp](i, j, k);
+      acc.mass[comp] += p;
+      acc.momentum[comp] += p * uc;
+      for (int a = 0; a < 3; ++a) {
+        acc.angular[a] += p * q[a] * uc;
+        acc.first[comp][a] += p * r[a];
+      }
+      for (int t = 0; t < kTensorComponents; ++t) acc.inertia[t] += p * q[ra[t]] * q[rb[t]];
     }
   }
 };
@@ -101,18 +131,11 @@ struct RigidMomentTerm {
 // This rank's sums over the owned faces of `box` (the caller MPI-sums them).
 inline RigidMoments rigid_moments(const WindowField& psi, const Velocity& vel, const RigidGeometry& g, double dv,
                                   const Box& box) {
-  RigidMoments m{};
-  double* out[RigidMoments::Count];
-  for (int d = 0; d < 3; ++d) {
-    out[d] = &m.mass[d];
-    out[3 + d] = &m.momentum[d];
-    out[6 + d] = &m.angular[d];
-    for (int a = 0; a < 3; ++a) out[15 + 3 * d + a] = &m.first[d][a];
-  }
-  for (int t = 0; t < kTensorComponents; ++t) out[9 + t] = &m.inertia[t];
-  for (int w = 0; w < RigidMoments::Count; ++w)
-    *out[w] = dv * detail::sum_over("eulerfsi::rigid::moments", box,
-                                    detail::RigidMomentTerm{psi, {vel.c[0], vel.c[1], vel.c[2]}, g, w});
+  RigidMoments m;
+  reduce_cells("eulerfsi::rigid::moments", box, detail::RigidMomentTerms{psi, {vel.c[0], vel.c[1], vel.c[2]}, g},
+               detail::RigidMomentsReducer(m));
+  double* all = &m.mass[0];  // 24 doubles in a row (the struct holds nothing else)
+  for (int n = 0; n < RigidMoments::Count; ++n) all[n] *= dv;
   return m;
 }
 
