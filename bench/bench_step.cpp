@@ -81,14 +81,17 @@ void time_steps(benchmark::State& state, const CaseConfig& cfg, const std::strin
 
 // implicit: time.implicit_viscosity (three Helmholtz solves per substep besides the Poisson one)
 void step_benchmark(benchmark::State& state, bool implicit) {
-  // particle: 0 none, 1 the paper's model, 2 the reference map, 3 a rigid sphere
+  // particle: 0 none, 1 the paper's model, 2 the reference map, 3 a rigid sphere, 4 a rigid sphere
+  // whose correction the next step's projection makes divergence-free (solver.reproject_constrained = false)
   const bool particle = state.range(3) != 0;
-  const SolidModelKind kinds[4] = {SolidModelKind::Paper, SolidModelKind::Paper, SolidModelKind::ReferenceMap,
-                                   SolidModelKind::Rigid};
+  const SolidModelKind kinds[5] = {SolidModelKind::Paper, SolidModelKind::Paper, SolidModelKind::ReferenceMap,
+                                   SolidModelKind::Rigid, SolidModelKind::Rigid};
   const SolidModelKind model = kinds[state.range(3)];
   CaseConfig cfg = pipe_case(int(state.range(0)), int(state.range(1)), int(state.range(2)), particle, model);
   cfg.time.implicit_viscosity = implicit;
-  static const char* labels[4] = {"pipe ", "pipe+sphere(paper) ", "pipe+sphere(refmap) ", "pipe+sphere(rigid) "};
+  cfg.solver.reproject_constrained = state.range(3) != 4;
+  static const char* labels[5] = {"pipe ", "pipe+sphere(paper) ", "pipe+sphere(refmap) ", "pipe+sphere(rigid) ",
+                                  "pipe+sphere(rigid, no reprojection) "};
   time_steps(state, cfg, std::string(labels[state.range(3)]) + (implicit ? "implicit-viscosity " : ""));
 }
 
@@ -104,6 +107,7 @@ BENCHMARK(BM_Step)
     ->Args({64, 64, 64, 2})
     ->Args({128, 64, 64, 2})
     ->Args({128, 64, 64, 3})
+    ->Args({128, 64, 64, 4})
     ->Args({160, 80, 80, 0})
     ->Args({160, 80, 80, 1})
     ->Args({160, 80, 80, 2})
@@ -125,12 +129,8 @@ BENCHMARK(BM_StepImplicitViscosity)
 // step of each in turn: their ratio (x_flow) comes from the same minutes of the machine, so a
 // shared VM's drift, which moves separate benchmarks by 10-30 %, cancels. The iteration time is
 // the pair's. Issue 8: the bodies' cost follows their number and size, not the grid.
-void step_pair(benchmark::State& state, FftPlanning planning) {
-  const int nx = int(state.range(0)), ny = int(state.range(1)), nz = int(state.range(2));
-  const int bodies = int(state.range(3));
-  CaseConfig flow_cfg = pipe_case(nx, ny, nz, false);
-  CaseConfig bodies_cfg = pipe_case_bodies(nx, ny, nz, bodies, 0.01 * double(state.range(4)));
-  flow_cfg.solver.fft_planning = bodies_cfg.solver.fft_planning = planning;
+// One step of each case in turn; the counters and the pair's iteration time.
+void time_pair(benchmark::State& state, const CaseConfig& flow_cfg, const CaseConfig& bodies_cfg) {
   SteppedCase flow_only(flow_cfg);
   SteppedCase with_bodies(bodies_cfg);
   double flow_s = 0.0, bodies_s = 0.0;
@@ -146,6 +146,15 @@ void step_pair(benchmark::State& state, FftPlanning planning) {
   state.counters["x_flow"] = benchmark::Counter(bodies_s / flow_s);
   state.counters["threads"] = benchmark::Counter(ExecSpace().concurrency());
   state.counters["ranks"] = benchmark::Counter(flow_only.comm.size());
+}
+
+void step_pair(benchmark::State& state, FftPlanning planning) {
+  const int nx = int(state.range(0)), ny = int(state.range(1)), nz = int(state.range(2));
+  const int bodies = int(state.range(3));
+  CaseConfig flow_cfg = pipe_case(nx, ny, nz, false);
+  CaseConfig bodies_cfg = pipe_case_bodies(nx, ny, nz, bodies, 0.01 * double(state.range(4)));
+  flow_cfg.solver.fft_planning = bodies_cfg.solver.fft_planning = planning;
+  time_pair(state, flow_cfg, bodies_cfg);
   state.SetLabel("pipe, then pipe+" + std::to_string(bodies) + "x sphere(refmap, d=" + std::to_string(state.range(4)) +
                  "%) " + (planning == FftPlanning::Measure ? "measured FFT plans " : "") +
                  compat::default_backend_name());
@@ -172,6 +181,25 @@ BENCHMARK(BM_StepPairBodies)
     ->Args({128, 64, 64, 4, 20})
     ->Args({128, 64, 64, 1, 10})
     ->Args({128, 64, 64, 4, 10})
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+
+// The flow alone and the flow with BM_Step's rigid sphere (d = D/5), a step of each in turn;
+// reproject: solver.reproject_constrained (1: the second projection after the correction, 0: left
+// to the next step's). Issue 29's bound: at most 1.1x the flow on 128 x 64^2.
+void BM_StepPairRigid(benchmark::State& state) {
+  const int nx = int(state.range(0)), ny = int(state.range(1)), nz = int(state.range(2));
+  CaseConfig flow_cfg = pipe_case(nx, ny, nz, false);
+  CaseConfig rigid_cfg = pipe_case(nx, ny, nz, true, SolidModelKind::Rigid);
+  rigid_cfg.solver.reproject_constrained = state.range(3) != 0;
+  time_pair(state, flow_cfg, rigid_cfg);
+  state.SetLabel(std::string("pipe, then pipe+sphere(rigid") + (state.range(3) ? "" : ", no reprojection") + ") " +
+                 compat::default_backend_name());
+}
+BENCHMARK(BM_StepPairRigid)
+    ->ArgNames({"nx", "ny", "nz", "reproject"})
+    ->Args({128, 64, 64, 1})
+    ->Args({128, 64, 64, 0})
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 
