@@ -71,6 +71,18 @@ PY
 [ "$(grep -c -- '--restart' "$work/map/args.log")" = 2 ] || fail "the continued runs did not --restart"
 # the table again from the folder alone
 /usr/bin/python3 "$root/tools/eulerfsi_liftmap.py" table "$work/map" > /dev/null || fail "table failed"
+# positions along a duct's diagonal (--points on one ray) get their zeros too; the soft model is passed
+/usr/bin/python3 "$root/tools/eulerfsi_liftmap.py" run "$work/case.toml" --model reference-map --binary "$stub" \
+  --points 0.1:0.1,0.2:0.2,0.3:0.3 --out-root "$work/diag" > "$work/diag.txt" 2>&1 || fail "the diagonal map failed"
+grep -q 'solid\[0\].model="reference-map"' "$work/diag/args.log" || fail "--model not passed"
+[ "$(tail -n +2 "$work/diag/liftmap_zeros.csv" | wc -l)" = 2 ] || fail "not both zeros along the diagonal: $(cat "$work/diag/liftmap_zeros.csv")"
+# several maps on one figure, and one that does not exist refused with exit 2
+/usr/bin/python3 "$root/tools/eulerfsi_liftmap.py" compare "$work/map:pipe" "$work/diag:diagonal" \
+  --out "$work/compare.png" > /dev/null || fail "compare failed"
+[ -s "$work/compare.png" ] || fail "compare wrote no figure"
+rc=0
+/usr/bin/python3 "$root/tools/eulerfsi_liftmap.py" compare "$work/none:x" --out "$work/x.png" 2> /dev/null || rc=$?
+[ "$rc" = 2 ] || fail "compare of a missing map gave exit $rc"
 # a case with two bodies is refused with exit 2
 printf '[[solid]]\ncenter = [0.5, 0.1, 0]\n[[solid]]\ncenter = [0.2, -0.1, 0]\n' > "$work/two.toml"
 rc=0

@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# The rigid particle's validation figures in docs/figures/ from the runs docs/VALIDATION.md names,
+# in one command (each figure is drawn from the runs that exist; a missing set is skipped):
+#   bash tools/validation_figures.sh [RUNS_ROOT=runs] [FIGURES=docs/figures]
+#   RUNS_ROOT/liftmap_re{100,200,400}            -> liftmap_rigid_re100_200_400.png
+#   RUNS_ROOT/liftmap_duct_face, liftmap_duct_diag -> liftmap_rigid_duct_re100.png
+#   RUNS_ROOT/release_re{100,400}_r*             -> rigid_releases.png
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+runs=${1:-runs}
+figures=${2:-$root/docs/figures}
+py=/usr/bin/python3
+mkdir -p "$figures"
+maps=()
+for re in 100 200 400; do
+  [ -f "$runs/liftmap_re$re/liftmap.csv" ] && maps+=("$runs/liftmap_re$re:Re = $re")
+done
+if [ ${#maps[@]} -gt 0 ]; then
+  $py "$root/tools/eulerfsi_liftmap.py" compare "${maps[@]}" --out "$figures/liftmap_rigid_re100_200_400.png"
+fi
+duct=()
+[ -f "$runs/liftmap_duct_face/liftmap.csv" ] && duct+=("$runs/liftmap_duct_face:wall bisector (y, 0)")
+[ -f "$runs/liftmap_duct_diag/liftmap.csv" ] && duct+=("$runs/liftmap_duct_diag:diagonal (s, s)")
+if [ ${#duct[@]} -gt 0 ]; then
+  $py "$root/tools/eulerfsi_liftmap.py" compare "${duct[@]}" --out "$figures/liftmap_rigid_duct_re100.png"
+fi
+releases=()
+for d in "$runs"/release_re*_r*; do [ -f "$d/particle.csv" ] && releases+=("$d"); done
+if [ ${#releases[@]} -gt 0 ]; then
+  $py "$root/tools/eulerfsi_plot.py" radial "${releases[@]}" --out "$figures/rigid_releases.png"
+fi
