@@ -3,7 +3,8 @@
 # F_r(r) = (r - 0.3)(0.7 - r) (r in units of R): the tool must place the sphere at each radius,
 # find the zeros at 0.3 (unstable: F_r rises through zero) and 0.7 (stable) within the linear
 # interpolation's bound (dr)^2 |F''| / (8 |F'|) = 0.00625 for dr = 0.1, continue a position
-# from its checkpoint with --restart, refuse a case with two bodies, and report a failed run.
+# from its checkpoint with --restart, refuse a case with two bodies, and report a failed run; pass
+# --model, find the zeros along a ray of --points (a duct's diagonal), and draw several maps (compare).
 #   usage: test_liftmap.sh WORK_DIR
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
