@@ -70,16 +70,27 @@ KOKKOS_INLINE_FUNCTION double min_image(double d, double L) {
   return d - L * static_cast<double>(n);
 }
 
+// A cell's weight in the core moments. cut >= 0: psi where psi >= cut, else 0 (a transported
+// psi's halo left out). cut < 0: psi times a C1 ramp from 0 at psi = |cut|/2 to 1 at 3|cut|/2, so
+// a cell whose derived psi rises or falls through the cut moves the moments continuously.
+KOKKOS_INLINE_FUNCTION double core_weight(double p, double cut) {
+  if (cut >= 0.0) return p < cut ? 0.0 : p;
+  const double t = (p + 0.5 * cut) / -cut;  // (p - |cut|/2) / |cut|
+  if (t <= 0.0) return 0.0;
+  if (t >= 1.0) return p;
+  return p * t * t * (3.0 - 2.0 * t);
+}
+
 struct FirstMomentTerm {
   WindowField psi;
   Field3 u, v, w;
   CellCentres xc;
   double kx;  // 2 pi / Lx
   int what;
-  double psi_min;  // cells below it do not count
+  double psi_min;  // the cut of core_weight
   KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k, double& acc) const {
-    const double p = psi(i, j, k);
-    if (p < psi_min) return;
+    const double p = core_weight(psi(i, j, k), psi_min);
+    if (p == 0.0) return;
     double f = 1.0;
     switch (what) {
       case BodyFirstMoments::Y: f = xc(1, j); break;
@@ -102,12 +113,13 @@ struct SecondMomentTerm {
   int what;  // 0..2: m1, 3..8: m2
   double psi_min;
   KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k, double& acc) const {
-    if (psi(i, j, k) < psi_min) return;
+    const double p = core_weight(psi(i, j, k), psi_min);
+    if (p == 0.0) return;
     const double d[3] = {min_image(xc(0, i) - c[0], period[0]), min_image(xc(1, j) - c[1], period[1]),
                          min_image(xc(2, k) - c[2], period[2])};
     const int ra[6] = {0, 1, 2, 0, 0, 1}, rb[6] = {0, 1, 2, 1, 2, 2};
     const double f = what < 3 ? d[what] : d[ra[what - 3]] * d[rb[what - 3]];
-    acc += psi(i, j, k) * f;
+    acc += p * f;
   }
 };
 
@@ -384,8 +396,8 @@ inline void body_circular_moments(const WindowField& psi, const CellCentres& xc,
   for (int q = 0; q < 2; ++q) {
     double s = 0.0;
     reduce_cells("eulerfsi::diag::body_circular_moments", box, KOKKOS_LAMBDA(int i, int j, int k, double& acc) {
-      const double p = psi(i, j, k);
-      if (p < psi_min) return;
+      const double p = detail::core_weight(psi(i, j, k), psi_min);
+      if (p == 0.0) return;
       const double arg = kd * (d == 1 ? xc(1, j) : xc(2, k));
       acc += p * (q == 0 ? compat::cos(arg) : compat::sin(arg));
     }, Kokkos::Sum<double>(s));

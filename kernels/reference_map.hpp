@@ -238,13 +238,27 @@ inline void rk3_vector_update(const Vector3& q, const Vector3& rhs, const Vector
 // body (d < -margin) and the cell was known before (level in [1, reach]: the body moves less than a
 // cell per step, and an unknown cell's q is stale), else 0. Cells of the outer layer (-margin <= d)
 // are extrapolated from the deeper ones like the fluid side (solid.map_margin, src/solid/reference_map_model.cpp).
-inline void classify_solid(const WindowField& level, const Vector3& q, const ReferenceShape& shape, const CellCentres& xc,
-                           double reach, double margin, bool initial, const double h[3], const Box& box) {
+// A solid cell's weight in the extension's fits, by its depth below the classification's edge
+// (depth = -d - margin >= 0): 0 at the edge, rising as a C1 smoothstep to 1 at `ramp` (a length;
+// 0: every solid cell weighs 1). A cell that leaves or joins the solid then leaves or enters every
+// fit with weight 0, so the extension, and psi, B and the forces it feeds, change continuously.
+KOKKOS_INLINE_FUNCTION double surface_weight(double depth, double ramp) {
+  if (depth >= ramp) return 1.0;
+  if (depth <= 0.0) return 0.0;
+  const double t = depth / ramp;
+  return t * t * (3.0 - 2.0 * t);
+}
+
+// weight: each solid cell's surface_weight (0 elsewhere).
+inline void classify_solid(const WindowField& level, const WindowField& weight, const Vector3& q,
+                           const ReferenceShape& shape, const CellCentres& xc, double reach, double margin, double ramp,
+                           bool initial, const double h[3], const Box& box) {
   const double i2h[3] = {0.5 / h[0], 0.5 / h[1], 0.5 / h[2]};
   const double i0 = i2h[0], i1 = i2h[1], i2 = i2h[2];
   const Vector3 m = q;
   for_each_cell("eulerfsi::refmap::classify", box, KOKKOS_LAMBDA(int i, int j, int k) {
     const double old = level(i, j, k);
+    weight(i, j, k) = 0.0;
     if (!initial && (old < kLevelSolid || old > reach)) {
       level(i, j, k) = 0.0;
       return;
@@ -262,7 +276,9 @@ inline void classify_solid(const WindowField& level, const Vector3& q, const Ref
     const double inv_2h[3] = {i0, i1, i2};
     double G[3][3];
     displacement_gradient(m, inv_2h, i, j, k, G);
-    level(i, j, k) = edge_geometry_at(phi0, n, inv_2h, G).distance(shape.shift) < -margin ? kLevelSolid : 0.0;
+    const double depth = -edge_geometry_at(phi0, n, inv_2h, G).distance(shape.shift) - margin;
+    level(i, j, k) = depth > 0.0 ? kLevelSolid : 0.0;
+    if (depth > 0.0) weight(i, j, k) = surface_weight(depth, ramp);
   });
 }
 
@@ -275,6 +291,7 @@ inline void classify_solid(const WindowField& level, const Vector3& q, const Ref
 struct ExtrapolationSweep {
   Vector3 q;
   WindowField level;
+  WindowField weight;  // a solid cell's surface_weight (classify_solid); band cells weigh 1
   double s;
   // The last sweep: a cell with no known cell among its 6 face neighbours is only marked
   // (pending_level) and fitted later, if a WENO stencil will read it (DeferredFits).
@@ -359,6 +376,14 @@ struct ExtrapolationSweep {
 
   // The fitted value at the unknown cell (i, j, k), and its level s + 1.
   KOKKOS_INLINE_FUNCTION void fit(int i, int j, int k) const {
+    double value[3];
+    fit_value(i, j, k, value);
+    for (int d = 0; d < 3; ++d) q.c[d](i, j, k) = value[d];
+    level(i, j, k) = s + 1.0;
+  }
+
+  // The least-squares value at (i, j, k) through the known cells around it (the cell itself weighs 0).
+  KOKKOS_INLINE_FUNCTION void fit_value(int i, int j, int k, double value[3]) const {
     // weights 1/|r|^2 by |r|^2 = 1..12 (the centre, r = 0, is the unknown cell itself)
     const double inv_r2[13] = {0.0,       1.0,       1.0 / 2,  1.0 / 3,  1.0 / 4,  1.0 / 5, 1.0 / 6,
                                1.0 / 7,   1.0 / 8,   1.0 / 9,  1.0 / 10, 1.0 / 11, 1.0 / 12};
@@ -373,18 +398,19 @@ struct ExtrapolationSweep {
     const long s0 = long(level.data.stride(0)), s1 = long(level.data.stride(1));
     const long centre = long(i - level.lo[0]) * s0 + long(j - level.lo[1]) * s1 + long(k - level.lo[2]);
     const double *const l0 = level.data.data(), *const q0 = q.c[0].data.data(), *const q1 = q.c[1].data.data(),
-                        *const q2 = q.c[2].data.data();
+                        *const q2 = q.c[2].data.data(), *const wt0 = weight.data.data();
     for (int a = -2; a <= 2; ++a)
       for (int b = -2; b <= 2; ++b) {
         double sw = 0, swc = 0, swcc = 0, swq[3] = {}, swcq[3] = {};
         // the line's five cells are contiguous (z is the fastest index)
         const long line = centre + a * s0 + b * s1 - 2;
         const double* lv = l0 + line;
+        const double* wt = wt0 + line;
         const double* ql[3] = {q0 + line, q1 + line, q2 + line};
         const double* w_line = inv_r2 + a * a + b * b;  // w = w_line[c^2]
         for (int c = -2; c <= 2; ++c) {
           if (!known_level(lv[c + 2])) continue;
-          const double w = w_line[c * c], wc = w * c;
+          const double w = w_line[c * c] * (lv[c + 2] == kLevelSolid ? wt[c + 2] : 1.0), wc = w * c;
           sw += w;
           swc += wc;
           swcc += wc * c;
@@ -406,20 +432,49 @@ struct ExtrapolationSweep {
     const double m[3] = {Sa, Sb, Sc}, A[6] = {Saa, Sbb, Scc, Sab, Sac, Sbc};
     const double b[3][3] = {{rhs[1][0], rhs[1][1], rhs[1][2]}, {rhs[2][0], rhs[2][1], rhs[2][2]},
                             {rhs[3][0], rhs[3][1], rhs[3][2]}};
-    double value[3];
     if (!fit_centre(S, m, A, rhs[0], b, value))
-      for (int d = 0; d < 3; ++d) value[d] = rhs[0][d] / S;  // the weighted mean
-    for (int d = 0; d < 3; ++d) q.c[d](i, j, k) = value[d];
-    level(i, j, k) = s + 1.0;
+      for (int d = 0; d < 3; ++d) value[d] = S > 0.0 ? rhs[0][d] / S : q.c[d](i, j, k);  // the weighted mean
   }
 };
 
 // defer_off_axis: the last sweep, whose cells without a known face neighbour wait for
 // finish_deferred_fits().
-inline void extrapolation_sweep(const Vector3& q, const WindowField& level, int sweep, const Box& box,
-                                bool defer_off_axis = false) {
-  if (!same_window(q, level)) throw std::logic_error("extrapolation_sweep: q and its level are on different windows");
-  for_each_row("eulerfsi::refmap::extrapolate", box, ExtrapolationSweep{q, level, double(sweep), defer_off_axis});
+inline void extrapolation_sweep(const Vector3& q, const WindowField& level, const WindowField& weight, int sweep,
+                                const Box& box, bool defer_off_axis = false) {
+  if (!same_window(q, level) || !same_window(weight, level))
+    throw std::logic_error("extrapolation_sweep: q, its level and weight are on different windows");
+  for_each_row("eulerfsi::refmap::extrapolate", box, ExtrapolationSweep{q, level, weight, double(sweep), defer_off_axis});
+}
+
+// The surface ramp's solid cells (surface_weight < 1) blend their carried map with the fit through
+// the solid around them,  q <- w q + (1 - w) q_fit,  so a cell's q reaches the extension's value
+// as it leaves the solid. The fits read the carried values, as the extrapolation sweeps do: first
+// surface_fits (before the sweeps) writes w q + (1 - w) q_fit to `out`, then store_surface_blend
+// (after them) moves it into q; at w = 0 the cell then holds what the first sweep gives it once
+// it has left.
+inline void surface_fits(const Vector3& q, const WindowField& level, const WindowField& weight, const Vector3& out,
+                         const Box& box) {
+  if (!same_window(q, level) || !same_window(weight, level))
+    throw std::logic_error("surface_fits: q, its level and weight are on different windows");
+  const ExtrapolationSweep solid{q, level, weight, kLevelSolid};
+  const Vector3 o = out;
+  for_each_cell("eulerfsi::refmap::surface_fits", box, KOKKOS_LAMBDA(int i, int j, int k) {
+    const double w = solid.weight(i, j, k);
+    if (solid.level(i, j, k) != kLevelSolid || w >= 1.0) return;
+    double fitted[3];
+    solid.fit_value(i, j, k, fitted);
+    for (int d = 0; d < 3; ++d) o.c[d](i, j, k) = w * solid.q.c[d](i, j, k) + (1.0 - w) * fitted[d];
+  });
+}
+
+inline void store_surface_blend(const Vector3& q, const WindowField& level, const WindowField& weight, const Vector3& out,
+                                const Box& box) {
+  const Vector3 m = q, o = out;
+  const WindowField l = level, w = weight;
+  for_each_cell("eulerfsi::refmap::surface_blend", box, KOKKOS_LAMBDA(int i, int j, int k) {
+    if (l(i, j, k) != kLevelSolid || w(i, j, k) >= 1.0) return;
+    for (int d = 0; d < 3; ++d) m.c[d](i, j, k) = o.c[d](i, j, k);
+  });
 }
 
 // The last sweep's pending cells once psi is known: fitted exactly as that sweep would have (the
@@ -450,10 +505,10 @@ struct DeferredFits {
   }
 };
 
-inline void finish_deferred_fits(const Vector3& q, const WindowField& level, const WindowField& psi, int last_sweep,
-                                 const Box& box) {
+inline void finish_deferred_fits(const Vector3& q, const WindowField& level, const WindowField& weight,
+                                 const WindowField& psi, int last_sweep, const Box& box) {
   if (!same_window(q, level)) throw std::logic_error("finish_deferred_fits: q and its level are on different windows");
-  for_each_cell("eulerfsi::refmap::deferred_fits", box, DeferredFits{ExtrapolationSweep{q, level, double(last_sweep)}, psi});
+  for_each_cell("eulerfsi::refmap::deferred_fits", box, DeferredFits{ExtrapolationSweep{q, level, weight, double(last_sweep)}, psi});
 }
 
 // psi and B from the map on the known cells whose central differences read known cells

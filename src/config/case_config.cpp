@@ -34,7 +34,7 @@ const std::vector<Section>& schema() {
       {"time", {"cfl", "dt", "t_end", "max_steps", "implicit_viscosity"}},
       {"solver", {"fft_planning", "reproject_constrained"}},
       {"output", {"dir", "every", "fields_every", "profiles_every", "checkpoint_every", "shape_times"}},
-      {"solid", {"shape", "diameter", "center", "thickness", "We", "viscosity_ratio", "initial_velocity", "sharpening", "model", "map_margin", "b_extension", "constraint"}},
+      {"solid", {"shape", "diameter", "center", "thickness", "We", "viscosity_ratio", "initial_velocity", "sharpening", "model", "map_margin", "map_ramp", "b_extension", "constraint"}},
   };
   return s;
 }
@@ -616,6 +616,13 @@ void read_solids(const Reader& r, const toml::table& root, const DomainConfig& d
     if (c.model != SolidModelKind::ReferenceMap && c.map_margin > 0)
       r.fail(s + ".map_margin", s + ".map_margin = " + fmt_double(c.map_margin) + ": applies to " + s +
                                     ".model = \"reference-map\" only (set it to 0 or remove it)");
+    r.get(t, s, "map_ramp", c.map_ramp);
+    r.require(c.map_ramp >= 0 && c.map_ramp <= 2, t, s, "map_ramp",
+              "must be in [0, 2] (cells below the solid's edge over which a cell's weight in the extension rises "
+              "to 1; 0 = every solid cell weighs 1)");
+    if (c.model != SolidModelKind::ReferenceMap && t->get("map_ramp"))
+      r.fail(s + ".map_ramp", s + ".map_ramp = " + fmt_double(c.map_ramp) + ": applies to " + s +
+                                  ".model = \"reference-map\" only (remove it)");
     r.get(t, s, "b_extension", c.b_extension);
     // the reference map derives B from xi everywhere it is known: there is no transported B to extend
     if (c.model == SolidModelKind::ReferenceMap && !c.b_extension)
@@ -812,8 +819,9 @@ std::string to_toml(const CaseConfig& c) {
        << "initial_velocity = " << toml_str(to_string(s.initial_velocity)) << "\n"
        << "sharpening = " << fmt_double(s.sharpening) << "\n"
        << "model = " << toml_str(to_string(s.model)) << "\n"
-       << "map_margin = " << fmt_double(s.map_margin) << "\n"
-       << "b_extension = " << (s.b_extension ? "true" : "false") << "\n"
+       << "map_margin = " << fmt_double(s.map_margin) << "\n";
+    if (s.model == SolidModelKind::ReferenceMap) os << "map_ramp = " << fmt_double(s.map_ramp) << "\n";
+    os << "b_extension = " << (s.b_extension ? "true" : "false") << "\n"
        << "constraint = " << toml_str(to_string(s.constraint)) << "\n";
   }
   return os.str();

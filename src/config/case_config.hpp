@@ -95,6 +95,7 @@ struct SolidConfig {
   double viscosity_ratio = 1.0;  // mu_s / mu_f
   double sharpening = 0.0;       // interface sharpening pseudo-step per time step, in units of h (0: off)
   double map_margin = 0.0;       // reference map: carried only deeper than this many cells inside the surface
+  double map_ramp = 0.0;        // reference map: a solid cell's weight in the extension rises over this many cells
   bool b_extension = true;       // paper model: B extended from the solid over a band, I beyond (false: the paper's B)
   InitialSolidVelocity initial_velocity = InitialSolidVelocity::Fluid;
   SolidModelKind model = SolidModelKind::Paper;

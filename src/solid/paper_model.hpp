@@ -15,6 +15,7 @@ class PaperModel final : public SolidModel {
   void advance_substep(SolidBody& body, const kernels::Velocity& vel, double dt, int substep) override;
   void fill_ghosts(SolidBody& body) override;
   Box active_box() const override { return grid_.interior(); }
+  bool diffuse_halo() const override { return true; }
   // B's rhs buffers of the shear components, free between substeps
   kernels::Scratch3 scratch() override { return {{b_rhs_.c[3], b_rhs_.c[4], b_rhs_.c[5]}}; }
 

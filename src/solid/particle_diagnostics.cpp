@@ -64,13 +64,19 @@ void sum_all(const Comm& comm, double (&a)[N]) {
   MPI_Allreduce(MPI_IN_PLACE, a, int(N), MPI_DOUBLE, MPI_SUM, comm.comm);
 }
 
-// Position, velocity and shape are psi-weighted moments over the cells with psi >= 0.05: the
+// Where psi carries a diffused halo (SolidModel::diffuse_halo, the paper model), position,
+// velocity and shape are psi-weighted moments over the cells with psi >= 0.05: the
 // interface cells keep their sub-cell information (psi >= 1/2 alone gave a staircase: D +20% in
 // the shear test), while the faint halo that numerical diffusion leaves (psi < 0.05, a few % of
 // the volume over thousands of cells) and that the fluid stretches into long tails is left out
 // (it made the psi-moment D 0.31 where the psi >= 1/2 shape had 0.03). The volume column and
 // the forces keep the whole psi.
 constexpr double kCore = 0.05;
+// The cut for a body (kernels::core_weight): sharp where psi has a halo; where psi is derived from
+// a sharp shape, a ramp over psi = 0.025-0.075, so that neither the cut's edge nor a cell entering
+// the derived band with a small psi makes the moments jump (no cut at all let the latter through:
+// the centroid's acceleration in test_particle_force lost its sign).
+double core_cut(const SolidBody& body) { return body.model && body.model->diffuse_halo() ? kCore : -kCore; }
 // The second edge width of the zero-width extrapolation, as a fraction of psi's own: 1 cell for
 // the map's 1.5 (narrower edges sample the shape on the grid with growing noise).
 constexpr double kNarrowEdgeFraction = 2.0 / 3.0;
@@ -87,7 +93,7 @@ double ParticleTracker::mean_x_velocity(const SolidPhase& solids, const FlowStat
   double m[2];
   const SolidBody& b = solids.bodies().at(body);
   const Box box = body_box(b, grid_);
-  kernels::body_x_momentum(b.psi, flow.vel, box, m, kCore);
+  kernels::body_x_momentum(b.psi, flow.vel, box, m, core_cut(b));
   sum_all(comm_, m);
   if (m[0] <= 0.0) {  // no core left: the whole psi
     kernels::body_x_momentum(b.psi, flow.vel, box, m);
@@ -143,7 +149,7 @@ std::vector<ParticleState> ParticleTracker::measure(const SolidPhase& solids, co
       out.push_back(s);
       continue;
     }
-    double cut = kCore;
+    double cut = core_cut(body);
     auto first = kernels::body_first_moments(body.psi, flow.vel, xc, lx, box, cut);
     sum_all(comm_, first.s);
     using F = kernels::BodyFirstMoments;

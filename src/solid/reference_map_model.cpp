@@ -72,7 +72,7 @@ ReferenceMapModel::ReferenceMapModel(const SolidConfig& solid, const CaseConfig&
 // Every field of the body and of the model, with its value outside the window (B = I; the map
 // unknown, level 0; everything else 0).
 std::vector<SolidWindow::Member> ReferenceMapModel::window_members(SolidBody& body) {
-  std::vector<SolidWindow::Member> m = {{&body.psi, 0.0, "psi"}, {&level_, 0.0, "xi_level"}};
+  std::vector<SolidWindow::Member> m = {{&body.psi, 0.0, "psi"}, {&level_, 0.0, "xi_level"}, {&weight_, 0.0, "xi_weight"}};
   for (int c = 0; c < kernels::kTensorComponents; ++c) {
     const double identity = c < 3 ? 1.0 : 0.0;
     m.push_back({&body.b.c[c], identity, "B"});
@@ -153,8 +153,7 @@ void ReferenceMapModel::set_initial_condition(SolidBody& body) {
     if (reach.hi[d] < grid_.all().hi[d]) reach.hi[d] -= kReach;
   }
   const Box box = intersection(grid_.interior(), reach);
-  kernels::classify_solid(level_, q_, shape_, centres_, kSolidReach, solid_margin(), true, grid_.h, box);
-  fill_level(box);
+  classify(box, true);
   active_ = box;
   extrapolate(box);
   // the smoothed edge adds 8 pi R int_0^eps (1 - H) s ds... = 5.5 % of a sphere 8 cells across:
@@ -193,9 +192,10 @@ void ReferenceMapModel::advance_substep(SolidBody& body, const kernels::Velocity
   std::swap(rhs_, rhs_old_);
   fill_map_ghosts(box);
   // the body where it is now, then q outside it again from the body's own values
-  kernels::classify_solid(level_, q_, shape_, centres_, kSolidReach, solid_margin(), false, grid_.h, box);
-  fill_level(box);
+  classify(box, false);
+  blend_fits(box);
   extrapolate(box);
+  store_blend(box);
   // B before the substep becomes B_prev by a swap (no copy; ghosts included): derive_solid writes
   // B anew on the box, and outside it both hold I (the box holds every known cell, grown by 2)
   std::swap(body.b, body.b_prev);
@@ -204,6 +204,36 @@ void ReferenceMapModel::advance_substep(SolidBody& body, const kernels::Velocity
   correct_volume(body, box);
   finish_extrapolation(body, box);
   update_active_box(body);
+}
+
+// The ramp in length, along the finest spacing as the margin.
+double ReferenceMapModel::surface_ramp() const {
+  return cfg_solid_.map_ramp * std::min(grid_.h[0], std::min(grid_.h[1], grid_.h[2]));
+}
+
+// The solid where the map now puts it, with each solid cell's weight in the extension; the ghosts
+// of both (the fits next to a slab end read the neighbour's cells).
+void ReferenceMapModel::classify(const Box& region, bool initial) {
+  kernels::classify_solid(level_, weight_, q_, shape_, centres_, kSolidReach, solid_margin(), surface_ramp(), initial,
+                          grid_.h, region);
+  fill_level(region);
+  fill(weight_, region);
+}
+
+// The surface ramp's cells take part of the fit through the solid (kernels::surface_fits), read
+// from the carried values as the sweeps read them, and stored after the sweeps; rhs_ holds them in
+// between (free from the update to the next substep's rhs).
+void ReferenceMapModel::blend_fits(const Box& region) {
+  blend_box_ = Box{};
+  if (cfg_solid_.map_ramp <= 0.0) return;
+  blend_box_ = intersection(region, psi_box());
+  if (!blend_box_.empty()) kernels::surface_fits(q_, level_, weight_, rhs_, blend_box_);
+}
+
+void ReferenceMapModel::store_blend(const Box& region) {
+  if (cfg_solid_.map_ramp <= 0.0) return;
+  if (!blend_box_.empty()) kernels::store_surface_blend(q_, level_, weight_, rhs_, blend_box_);
+  fill_map_ghosts(region);
 }
 
 // One Newton step on V(shift) = V0 with dV/dshift = the surface area; psi derived again (B, from
@@ -242,7 +272,7 @@ void ReferenceMapModel::extrapolate(const Box& region) {
   solid_box_ = any ? solid : Box{};
   for (int sweep = 1; sweep <= kBand; ++sweep) {
     const Box reach = any ? intersection(region, solid.grown(sweep, grid_.all())) : Box{};
-    if (!reach.empty()) kernels::extrapolation_sweep(q_, level_, sweep, reach, sweep == kBand);
+    if (!reach.empty()) kernels::extrapolation_sweep(q_, level_, weight_, sweep, reach, sweep == kBand);
     if (sweep == kBand) last_sweep_box_ = reach;
     // every rank exchanges, with or without a body: the halo exchange is collective
     fill_map_ghosts(region);
@@ -254,7 +284,7 @@ void ReferenceMapModel::extrapolate(const Box& region) {
 // substep's WENO5 stencils read them (kernels::DeferredFits). psi's ghosts are filled, so a cell
 // next to a slab end sees the advected cells across it.
 void ReferenceMapModel::finish_extrapolation(const SolidBody& body, const Box& region) {
-  if (!last_sweep_box_.empty()) kernels::finish_deferred_fits(q_, level_, body.psi, kBand, last_sweep_box_);
+  if (!last_sweep_box_.empty()) kernels::finish_deferred_fits(q_, level_, weight_, body.psi, kBand, last_sweep_box_);
   fill_map_ghosts(region);
   fill_level(region);
 }

@@ -62,6 +62,10 @@ class ReferenceMapModel final : public SolidModel {
   void extrapolate(const Box& region);
   void finish_extrapolation(const SolidBody& body, const Box& region);
   double solid_margin() const;
+  double surface_ramp() const;
+  void classify(const Box& region, bool initial);
+  void blend_fits(const Box& region);
+  void store_blend(const Box& region);
   void derive_solid(SolidBody& body, const Box& region);
   void update_active_box(SolidBody& body);
   std::vector<SolidWindow::Member> window_members(SolidBody& body);
@@ -80,6 +84,8 @@ class ReferenceMapModel final : public SolidModel {
   kernels::CellCentres centres_;
   kernels::Vector3 q_, rhs_, rhs_old_;
   WindowField level_;
+  Box blend_box_;       // where blend_fits left the surface cells' blend
+  WindowField weight_;  // each solid cell's weight in the extension (kernels::surface_weight)
   WindowField psi_other_width_;  // the diagnostics' second psi, allocated on first use
   // psi at the start of the last step and 1 / its dt (0 before a step): the radial-momentum
   // budget's dpsi/dt (psi is derived, not transported by the solver's fluxes)

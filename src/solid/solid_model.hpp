@@ -64,6 +64,10 @@ class SolidModel {
   // shape moments to zero width; valid on active_box() (outside it the field is stale). 0 and an
   // empty field where psi is transported (the paper model).
   virtual double edge_half_width_cells() const { return 0.0; }
+  // Whether psi carries a faint halo of numerical diffusion (a transported psi: the paper model),
+  // which the position, velocity and shape moments leave out (psi < 0.05); a psi derived from a
+  // sharp shape has none, and the cut's on/off edge would make those moments jump in time.
+  virtual bool diffuse_halo() const { return false; }
   virtual WindowField psi_at_half_width(const SolidBody&, double /*width_cells*/) { return WindowField(); }
   // Where psi is not the solver's conservative WENO transport (the reference map derives it), the
   // radial-momentum budget takes dpsi/dt from psi's change over the last step: psi at that step's

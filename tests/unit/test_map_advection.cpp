@@ -55,8 +55,9 @@ struct MapCase {
     shape.top = 0.5 * n[1] + 0.2;  // the layer y < top
     const kernels::CellCentres centres{{0.0, 0.0, 0.0}, {1.0, 1.0, 1.0}};
     const double h[3] = {1.0, 1.0, 1.0};
-    kernels::classify_solid(level, q, shape, centres, 3.0, 0.0, true, h, interior);
-    for (int s = 1; s <= 3; ++s) kernels::extrapolation_sweep(q, level, s, interior);
+    const WindowField weight(field("weight"));
+    kernels::classify_solid(level, weight, q, shape, centres, 3.0, 0.0, 1.0, true, h, interior);
+    for (int s = 1; s <= 3; ++s) kernels::extrapolation_sweep(q, level, weight, s, interior);
     kernels::solid_from_map(psi, b, q, level, shape, centres, 1.5, 3.0, h, interior);
   }
 

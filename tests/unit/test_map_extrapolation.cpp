@@ -1,9 +1,11 @@
 // The reference map's extrapolation beyond the body (kernels/reference_map.hpp): the least-squares
-// sweeps reproduce a rigid motion exactly, and the last sweep's deferred cells (DeferredFits)
-// hold, wherever anything reads them, the values of a full sweep, bit for bit; the host rows equal
-// the per-cell form (GPUs).
+// sweeps reproduce a rigid motion exactly, with and without the surface ramp's weights and blend;
+// a cell leaving the solid changes the extension continuously with the ramp (and by a jump
+// without); the last sweep's deferred cells (DeferredFits) hold, wherever anything reads them, the
+// values of a full sweep, bit for bit; the host rows equal the per-cell form (GPUs).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -30,14 +32,17 @@ double map_value(int a, int i, int j, int k, bool deformed) {
   return v;
 }
 
+// ramp: the surface ramp in cells (0: every solid cell weighs 1); margin: solid.map_margin in cells.
 struct Map {
   kernels::Vector3 q;
-  WindowField level;
+  WindowField level, weight;
   kernels::ReferenceShape shape;
   kernels::CellCentres centres{{0.0, 0.0, 0.0}, {1.0, 1.0, 1.0}};
+  double ramp;
 
-  explicit Map(bool deformed) {
+  explicit Map(bool deformed, double ramp_cells = 0.0, double margin = 0.0) : ramp(ramp_cells) {
     level = WindowField(Field3("level", kN, kN, kN));
+    weight = WindowField(Field3("weight", kN, kN, kN));
     for (int a = 0; a < 3; ++a) {
       q.c[a] = WindowField(Field3("q", kN, kN, kN));
       auto h = Kokkos::create_mirror_view(q.c[a].data);
@@ -49,13 +54,41 @@ struct Map {
     shape.radius = kRadius;
     for (int a = 0; a < 3; ++a) shape.centre[a] = kCentre[a];  // in the reference configuration
     const double h[3] = {1.0, 1.0, 1.0};
-    kernels::classify_solid(level, q, shape, centres, 3.0, 0.0, true, h, kInterior);
+    kernels::classify_solid(level, weight, q, shape, centres, 3.0, margin, ramp, true, h, kInterior);
   }
   // sweeps 1 .. kLastSweep, the last one deferring its off-axis cells if `defer`
   void extrapolate(bool defer) const {
-    for (int s = 1; s <= kLastSweep; ++s) kernels::extrapolation_sweep(q, level, s, kInterior, defer && s == kLastSweep);
+    for (int s = 1; s <= kLastSweep; ++s)
+      kernels::extrapolation_sweep(q, level, weight, s, kInterior, defer && s == kLastSweep);
+  }
+  // the sweeps with the surface ramp's blend around them, as the model runs them
+  void blend_and_extrapolate() const {
+    kernels::Vector3 out;
+    for (int a = 0; a < 3; ++a) out.c[a] = WindowField(Field3("blend", kN, kN, kN));
+    kernels::surface_fits(q, level, weight, out, kInterior);
+    extrapolate(false);
+    kernels::store_surface_blend(q, level, weight, out, kInterior);
   }
 };
+
+// The signed distance to the surface at cell (i, j, k) as classify_solid computes it, on the host
+// from the map's formula (its central differences are exact for the quadratic map).
+double surface_distance(const Map& m, int i, int j, int k, bool deformed) {
+  double X[3], n[3], G[3][3];
+  for (int a = 0; a < 3; ++a) {
+    const int idx[3] = {i, j, k};
+    X[a] = idx[a] + map_value(a, i, j, k, deformed);
+    for (int b = 0; b < 3; ++b) {
+      int lo[3] = {i, j, k}, hi[3] = {i, j, k};
+      lo[b] -= 1;
+      hi[b] += 1;
+      G[a][b] = 0.5 * (map_value(a, hi[0], hi[1], hi[2], deformed) - map_value(a, lo[0], lo[1], lo[2], deformed));
+    }
+  }
+  const double phi0 = m.shape.unshifted(X, n);
+  const double inv_2h[3] = {0.5, 0.5, 0.5};
+  return kernels::edge_geometry_at(phi0, n, inv_2h, G).distance(m.shape.shift);
+}
 
 using HostCells = Kokkos::View<double***, Kokkos::LayoutRight, Kokkos::HostSpace>;
 HostCells on_host(const WindowField& f) { return Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), f.data); }
@@ -65,9 +98,15 @@ HostCells on_host(const WindowField& f) { return Kokkos::create_mirror_view_and_
 // Rycroft et al. (2020) sec. 2.4: a linear fit through the known cells is exact for a linear q,
 // so every band cell carries the rigid motion to round-off.
 TEST(MapExtrapolation, ExactForARigidMotion) {
-  const Map m(false);
-  m.extrapolate(false);
-  const HostCells level = on_host(m.level);
+  for (const double ramp : {0.0, 1.0}) {
+    SCOPED_TRACE(ramp);
+    const Map m(false, ramp);
+    if (ramp > 0.0) {
+      m.blend_and_extrapolate();
+    } else {
+      m.extrapolate(false);
+    }
+    const HostCells level = on_host(m.level);
   int band = 0;
   double worst = 0.0;
   for (int a = 0; a < 3; ++a) {
@@ -80,9 +119,79 @@ TEST(MapExtrapolation, ExactForARigidMotion) {
             worst = std::fmax(worst, std::fabs(q(i, j, k) - map_value(a, i, j, k, false)));
           }
   }
-  EXPECT_GT(band, 2000);  // three shells around the sphere
-  // |q| <= 10 on the window: a few ulps of the normal equations' sums
-  EXPECT_LT(worst, 1e-12);
+    EXPECT_GT(band, 2000);  // three shells around the sphere
+    // |q| <= 10 on the window: a few ulps of the normal equations' sums
+    EXPECT_LT(worst, 1e-12);
+  }
+}
+
+// A solid cell that leaves the solid (its depth below the edge from +1e-9 to -1e-9 cells, by the
+// margin) while the carried labels of the surface layer have drifted from the interior's linear
+// map (0.05 cells here; about 0.13 h in the quick start at 6.4 cells per d): without the ramp the
+// cell drops out of the fits at full weight and its q is replaced, and the solid and the first
+// shell (levels 1-2, where psi is largest outside the body) jump by a fraction of the drift; with
+// it the cell weighs ~1e-18 as it leaves and they change by round-off. The outer shells (levels
+// 3-4) still jump: a cell that changes level is fitted through other cells (the sweeps' cascade).
+TEST(MapExtrapolation, ACellLeavingTheSolidChangesTheExtensionContinuously) {
+  const Map probe(false);
+  const HostCells level = on_host(probe.level);
+  double shallowest = 1e30;
+  int at[3] = {0, 0, 0};
+  for (int i = 0; i < kN; ++i)
+    for (int j = 0; j < kN; ++j)
+      for (int k = 0; k < kN; ++k)
+        if (level(i, j, k) == kernels::kLevelSolid && -surface_distance(probe, i, j, k, false) < shallowest) {
+          shallowest = -surface_distance(probe, i, j, k, false);
+          at[0] = i, at[1] = j, at[2] = k;
+        }
+  ASSERT_GT(shallowest, 1e-6);
+  // the drift: on the surface layer (depth < 1 cell), away from the probed cell and its face
+  // neighbours (its own classification reads them)
+  auto drifted = [&](const Map& m) {
+    for (int a = 0; a < 3; ++a) {
+      auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), m.q.c[a].data);
+      for (int i = 1; i < kN - 1; ++i)
+        for (int j = 1; j < kN - 1; ++j)
+          for (int k = 1; k < kN - 1; ++k) {
+            const int far = std::abs(i - at[0]) + std::abs(j - at[1]) + std::abs(k - at[2]);
+            const double depth = -surface_distance(m, i, j, k, false);
+            if (far > 1 && depth > 0.0 && depth < 1.0) h(i, j, k) += 0.05 * std::sin(i + 2.0 * j + 3.0 * k + a);
+          }
+      Kokkos::deep_copy(m.q.c[a].data, h);
+    }
+  };
+  double jump[2] = {0.0, 0.0};
+  for (const int with_ramp : {0, 1}) {
+    const double ramp = with_ramp;
+    const Map in(false), out(false);
+    for (const Map* m : {&in, &out}) drifted(*m);
+    // classified again on the drifted map, the probed cell just inside and just outside
+    const double h[3] = {1.0, 1.0, 1.0};
+    kernels::classify_solid(in.level, in.weight, in.q, in.shape, in.centres, 3.0, shallowest - 1e-9, ramp, true, h,
+                            kInterior);
+    kernels::classify_solid(out.level, out.weight, out.q, out.shape, out.centres, 3.0, shallowest + 1e-9, ramp, true, h,
+                            kInterior);
+    for (const Map* m : {&in, &out}) {
+      if (ramp > 0.0) {
+        m->blend_and_extrapolate();
+      } else {
+        m->extrapolate(false);
+      }
+    }
+    const HostCells li = on_host(in.level), lo = on_host(out.level);
+    EXPECT_EQ(li(at[0], at[1], at[2]), kernels::kLevelSolid);
+    EXPECT_NE(lo(at[0], at[1], at[2]), kernels::kLevelSolid);
+    for (int a = 0; a < 3; ++a) {
+      const HostCells qi = on_host(in.q.c[a]), qo = on_host(out.q.c[a]);
+      for (int i = 0; i < kN; ++i)
+        for (int j = 0; j < kN; ++j)
+          for (int k = 0; k < kN; ++k)
+            if (li(i, j, k) > 0.0 && li(i, j, k) <= 2.0 && lo(i, j, k) > 0.0 && lo(i, j, k) <= 2.0)
+              jump[with_ramp] = std::fmax(jump[with_ramp], std::fabs(qi(i, j, k) - qo(i, j, k)));
+    }
+  }
+  EXPECT_GT(jump[0], 1e-3) << "without the ramp the extension jumps by a fraction of the drift";
+  EXPECT_LT(jump[1], 1e-8);
 }
 
 // The last sweep fits at once only the cells with a known face neighbour (the central differences
@@ -108,7 +217,7 @@ TEST(MapExtrapolation, DeferredFitsAreTheFullSweepWhereverRead) {
   const double h[3] = {1.0, 1.0, 1.0};
   kernels::solid_from_map(psi, b, deferred.q, deferred.level, deferred.shape, deferred.centres, 1.5, kMaxDerivedLevel, h,
                           kInterior);
-  kernels::finish_deferred_fits(deferred.q, deferred.level, psi, kLastSweep, kInterior);
+  kernels::finish_deferred_fits(deferred.q, deferred.level, deferred.weight, psi, kLastSweep, kInterior);
 
   const HostCells lf = on_host(full.level), ld = on_host(deferred.level), p = on_host(psi);
   HostCells qf[3], qd[3];
@@ -156,7 +265,8 @@ TEST(MapExtrapolation, HostRowsEqualThePerCellForm) {
   const Map rows(true), cells(true);
   rows.extrapolate(false);
   for (int s = 1; s <= kLastSweep; ++s)
-    Kokkos::parallel_for("per_cell_sweep", kInterior.policy(), kernels::ExtrapolationSweep{cells.q, cells.level, double(s)});
+    Kokkos::parallel_for("per_cell_sweep", kInterior.policy(),
+                         kernels::ExtrapolationSweep{cells.q, cells.level, cells.weight, double(s)});
   Kokkos::fence();
   const HostCells lr = on_host(rows.level), lc = on_host(cells.level);
   int band = 0, mismatch = 0;
@@ -177,8 +287,9 @@ TEST(MapExtrapolation, HostRowsEqualThePerCellForm) {
 TEST(MapExtrapolation, RefusesFieldsOnDifferentWindows) {
   const Map m(false);
   const WindowField wider(Field3("wider", kN, kN, kN + 2));
-  EXPECT_THROW(kernels::extrapolation_sweep(m.q, wider, 1, kInterior), std::logic_error);
+  EXPECT_THROW(kernels::extrapolation_sweep(m.q, wider, m.weight, 1, kInterior), std::logic_error);
+  EXPECT_THROW(kernels::extrapolation_sweep(m.q, m.level, wider, 1, kInterior), std::logic_error);
   const int origin[3] = {1, 0, 0};
   const WindowField shifted(Field3("shifted", kN, kN, kN), origin);
-  EXPECT_THROW(kernels::finish_deferred_fits(m.q, shifted, shifted, kLastSweep, kInterior), std::logic_error);
+  EXPECT_THROW(kernels::finish_deferred_fits(m.q, shifted, shifted, shifted, kLastSweep, kInterior), std::logic_error);
 }
