@@ -149,15 +149,16 @@ std::vector<SolidWindow::Member> PaperModel::window_members(SolidBody& body) {
 }
 
 // The cells a sphere's fields need at its initial position (storage indices of this rank's
-// numbering, possibly beyond the slab): every cell a sub-sample inside the sphere may lie in,
-// grown by the active box's band and the reach.
+// numbering, possibly beyond the slab): the cells a sub-sample inside the sphere may lie in (cell s
+// holds samples in (s - 1/2, s + 1/2) h from the centre of cell 0), grown by the active box's band
+// and the reach.
 Box PaperModel::sphere_need(const SolidConfig& s, const Grid& g) {
-  const int margin = kExtensionBand + kReach + 1;
+  const int margin = kExtensionBand + kReach;
   Box b;
   for (int d = 0; d < 3; ++d) {
     const double x0 = g.centre(d, 0), r = 0.5 * s.diameter;
-    b.lo[d] = int(std::floor((s.center[d] - r - x0) / g.h[d])) - margin;
-    b.hi[d] = int(std::ceil((s.center[d] + r - x0) / g.h[d])) + 1 + margin;
+    b.lo[d] = int(std::floor((s.center[d] - r - x0) / g.h[d] + 0.5)) - margin;
+    b.hi[d] = int(std::ceil((s.center[d] + r - x0) / g.h[d] + 0.5)) + margin;
   }
   return b;
 }
