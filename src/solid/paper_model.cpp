@@ -289,8 +289,8 @@ void PaperModel::advance_substep(SolidBody& body, const kernels::Velocity& vel, 
   const Box updated = bounding_box(rhs_box, rhs_old_written_);
   // B before the substep becomes B_prev by a swap (no copy); B is written anew from it
   std::swap(body.b, body.b_prev);
-  kernels::rk3_scalar_update(body.psi, psi_rhs_, psi_rhs_old_, dt, gamma, zeta, updated);
-  kernels::rk3_tensor_update(body.b, body.b_prev, b_rhs_, b_rhs_old_, dt, gamma, zeta, updated);
+  kernels::rk3_body_update(body.psi, psi_rhs_, psi_rhs_old_, body.b, body.b_prev, b_rhs_, b_rhs_old_, dt, gamma, zeta,
+                           updated);
   std::swap(psi_rhs_, psi_rhs_old_);
   std::swap(b_rhs_, b_rhs_old_);
   std::swap(rhs_written_, rhs_old_written_);
