@@ -62,8 +62,9 @@ KOKKOS_FORCEINLINE_FUNCTION double star_max(const Q& psi, int i, int j, int k) {
   return m;
 }
 
-// rhs = -div_h^WENO(u psi)
-inline void scalar_advection_rhs(const Field3& rhs, const Field3& q, const Velocity& vel, const double h[3],
+// rhs = -div_h^WENO(u psi); exactly 0 where the star holds no psi (the paper model's box path
+// relies on it: its rhs box is psi's support grown by the star's radius, src/solid/paper_model.cpp).
+inline void scalar_advection_rhs(const WindowField& rhs, const WindowField& q, const Velocity& vel, const double h[3],
                                  const Box& box) {
   const double ih0 = 1.0 / h[0], ih1 = 1.0 / h[1], ih2 = 1.0 / h[2];
   const Field3 u = vel.c[0], v = vel.c[1], w = vel.c[2];
@@ -80,7 +81,7 @@ inline void scalar_advection_rhs(const Field3& rhs, const Field3& q, const Veloc
 struct TensorTransportRhs {
   Tensor6 rhs, b;
   Field3 u, v, w;
-  Field3 psi;
+  WindowField psi;
   double psi_min;
   double inv_h[3];
 
@@ -115,7 +116,7 @@ struct TensorTransportRhs {
 };
 
 // psi_min: the volume fraction below which B is reset to I (a negative value computes every cell).
-inline void tensor_transport_rhs(const Tensor6& rhs, const Tensor6& b, const Velocity& vel, const Field3& psi,
+inline void tensor_transport_rhs(const Tensor6& rhs, const Tensor6& b, const Velocity& vel, const WindowField& psi,
                                  double psi_min, const double h[3], const Box& box) {
   TensorTransportRhs f{rhs, b, vel.c[0], vel.c[1], vel.c[2], psi, psi_min, {1.0 / h[0], 1.0 / h[1], 1.0 / h[2]}};
   for_each_cell("eulerfsi::solid::b_rhs", box, f);
@@ -123,26 +124,57 @@ inline void tensor_transport_rhs(const Tensor6& rhs, const Tensor6& b, const Vel
 
 // Low-storage RK3 substep: q += dt (gamma rhs + zeta rhs_old). The caller swaps rhs and rhs_old.
 // q = q0 + dt (gamma rhs + zeta rhs_old) on one field (q may be q0); flat indices on the shared
-// layout, so the k loop vectorises.
-inline void rk3_field_update(const Field3& q, const Field3& q0, const Field3& rhs, const Field3& rhs_old, double a,
-                             double c, const Box& box, const char* label) {
+// layout, so the k loop vectorises: the four fields lie on one window (one body's, or the slab).
+inline void rk3_field_update(const WindowField& q, const WindowField& q0, const WindowField& rhs,
+                             const WindowField& rhs_old, double a, double c, const Box& box, const char* label) {
+  const long s0 = long(q.data.stride(0)), s1 = long(q.data.stride(1));
+  const int l0 = q.lo[0], l1 = q.lo[1], l2 = q.lo[2];
+  double* out = q.data.data();
+  const double *in = q0.data.data(), *r = rhs.data.data(), *ro = rhs_old.data.data();
   for_each_cell(label, box, KOKKOS_LAMBDA(int i, int j, int k) {
-    const long n = i * long(q.stride(0)) + j * long(q.stride(1)) + k;
-    q.data()[n] = q0.data()[n] + a * rhs.data()[n] + c * rhs_old.data()[n];
+    const long n = (i - l0) * s0 + (j - l1) * s1 + (k - l2);
+    out[n] = in[n] + a * r[n] + c * ro[n];
   });
 }
 
-inline void rk3_scalar_update(const Field3& q, const Field3& rhs, const Field3& rhs_old, double dt, double gamma,
-                              double zeta, const Box& box) {
+inline void rk3_scalar_update(const WindowField& q, const WindowField& rhs, const WindowField& rhs_old, double dt,
+                              double gamma, double zeta, const Box& box) {
   rk3_field_update(q, q, rhs, rhs_old, dt * gamma, dt * zeta, box, "eulerfsi::solid::psi_update");
 }
 
 // B = B0 + dt (gamma rhs + zeta rhs_old), component by component (B0: the tensor before the
-// substep, kept by the caller as B_prev). Whole-slab tensors (the flat index is the storage's).
+// substep, kept by the caller as B_prev); every tensor on one window.
 inline void rk3_tensor_update(const Tensor6& b, const Tensor6& b0, const Tensor6& rhs, const Tensor6& rhs_old, double dt,
                               double gamma, double zeta, const Box& box) {
   for (int s = 0; s < kTensorComponents; ++s)
-    rk3_field_update(b.c[s].data, b0.c[s].data, rhs.c[s].data, rhs_old.c[s].data, dt * gamma, dt * zeta, box, "eulerfsi::solid::b_update");
+    rk3_field_update(b.c[s], b0.c[s], rhs.c[s], rhs_old.c[s], dt * gamma, dt * zeta, box, "eulerfsi::solid::b_update");
+}
+
+// psi and B's six components in one pass (one launch instead of seven; the same arithmetic as
+// rk3_scalar_update and rk3_tensor_update), B0 the tensor before the substep; every field on one
+// window.
+inline void rk3_body_update(const WindowField& psi, const WindowField& psi_rhs, const WindowField& psi_rhs_old,
+                            const Tensor6& b, const Tensor6& b0, const Tensor6& rhs, const Tensor6& rhs_old, double dt,
+                            double gamma, double zeta, const Box& box) {
+  constexpr int kFields = kTensorComponents + 1;
+  struct Pointers {
+    double* out[kFields];
+    const double *in[kFields], *r[kFields], *ro[kFields];
+  } p;
+  for (int s = 0; s < kFields; ++s) {
+    const bool scalar = s == kTensorComponents;
+    p.out[s] = scalar ? psi.data.data() : b.c[s].data.data();
+    p.in[s] = scalar ? psi.data.data() : b0.c[s].data.data();
+    p.r[s] = scalar ? psi_rhs.data.data() : rhs.c[s].data.data();
+    p.ro[s] = scalar ? psi_rhs_old.data.data() : rhs_old.c[s].data.data();
+  }
+  const double a = dt * gamma, c = dt * zeta;
+  const long s0 = long(psi.data.stride(0)), s1 = long(psi.data.stride(1));
+  const int l0 = psi.lo[0], l1 = psi.lo[1], l2 = psi.lo[2];
+  for_each_cell("eulerfsi::solid::body_update", box, KOKKOS_LAMBDA(int i, int j, int k) {
+    const long n = (i - l0) * s0 + (j - l1) * s1 + (k - l2);
+    for (int s = 0; s < kFields; ++s) p.out[s][n] = p.in[s][n] + a * p.r[s][n] + c * p.ro[s][n];
+  });
 }
 
 // psi = min(max(psi, 0), 1): WENO5 is essentially non-oscillatory, not bounded, so a sharp
@@ -171,11 +203,52 @@ inline double interface_weight(const Field3& psi, const Box& box) {
 
 // psi += c psi (1 - psi): returns the clipped volume to the interface only, and keeps psi in
 // [0, 1] while |c| <= 1 (the clipped volume is a tiny fraction of the interface weight).
-inline void add_to_interface(const Field3& psi, double c, const Box& box) {
+inline void add_to_interface(const WindowField& psi, double c, const Box& box) {
   for_each_cell("eulerfsi::solid::psi_restore", box, KOKKOS_LAMBDA(int i, int j, int k) {
     const double p = psi(i, j, k);
     psi(i, j, k) = p + c * p * (1.0 - p);
   });
+}
+
+// The clip with a floor, psi = 0 where psi < floor (negative values included), min(psi, 1)
+// elsewhere, and both sums above, the removed volume sum (psi_before - psi_after) and the weight
+// sum psi (1 - psi) after the clip, in an order fixed by the cells alone: each row (i, j) summed
+// along k into `rows`, then the rows in order of i and j on the host. A zero term (a cell without
+// psi) leaves such a running sum's bits unchanged wherever it falls, so every box that holds
+// psi's support gives the same two sums, on any number of threads: the paper model's box path
+// equals its whole-slab path bit for bit (a Kokkos reduction splits its terms among threads by
+// the box's shape, which changes the rounding). rows: at least 2 x (box's i-extent x j-extent).
+struct ClipSums {
+  double removed = 0.0, weight = 0.0;
+};
+using RowSums = Kokkos::View<double*, Kokkos::LayoutRight, MemSpace>;
+
+inline ClipSums clip_volume_fraction_ordered(const WindowField& psi, const RowSums& rows, double psi_floor, const Box& box) {
+  ClipSums sums;
+  if (box.empty()) return sums;
+  const int i0 = box.lo[0], j0 = box.lo[1], k0 = box.lo[2], k1 = box.hi[2];
+  const int nj = box.hi[1] - box.lo[1];
+  const long n = 2L * (box.hi[0] - box.lo[0]) * nj;
+  Kokkos::parallel_for("eulerfsi::solid::psi_clip_rows", plane_policy(box), KOKKOS_LAMBDA(int i, int j) {
+    double removed = 0.0, weight = 0.0;
+    for (int k = k0; k < k1; ++k) {
+      const double before = psi(i, j, k);
+      const double after = before < psi_floor ? 0.0 : compat::fmin(before, 1.0);
+      psi(i, j, k) = after;
+      removed += before - after;
+      weight += after * (1.0 - after);
+    }
+    const long r = 2L * ((i - i0) * long(nj) + (j - j0));
+    rows(r) = removed;
+    rows(r + 1) = weight;
+  });
+  const auto host = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(),
+                                                        Kokkos::subview(rows, Kokkos::make_pair(0L, n)));
+  for (long r = 0; r < n; r += 2) {
+    sums.removed += host(r);
+    sums.weight += host(r + 1);
+  }
+  return sums;
 }
 
 // B = F F^T is symmetric positive definite. WENO reconstructs each component on its own and can

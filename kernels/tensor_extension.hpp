@@ -20,7 +20,7 @@
 namespace eulerfsi::kernels {
 
 // known = 1 where psi >= psi_solid and B is positive definite (the solid's own B), else 0.
-inline void mark_solid_tensor(const Field3& known, const WindowField& psi, const Tensor6& b, double psi_solid,
+inline void mark_solid_tensor(const WindowField& known, const WindowField& psi, const Tensor6& b, double psi_solid,
                               const Box& box) {
   for_each_cell("eulerfsi::solid::b_mark", box, KOKKOS_LAMBDA(int i, int j, int k) {
     // most cells are fluid: B is read only inside the solid
@@ -36,7 +36,7 @@ inline void mark_solid_tensor(const Field3& known, const WindowField& psi, const
 //   B = (1/n) sum over those n face neighbours of B,   known = s + 1.
 // In place: the cells written are unknown, the cells read were known before the sweep, so no
 // cell is both read and written and the result does not depend on the order.
-inline void extend_tensor_sweep(const Tensor6& b, const Field3& known, int sweep, const Box& box) {
+inline void extend_tensor_sweep(const Tensor6& b, const WindowField& known, int sweep, const Box& box) {
   const double s = double(sweep);
   for_each_cell("eulerfsi::solid::b_extend", box, KOKKOS_LAMBDA(int i, int j, int k) {
     if (known(i, j, k) != 0.0) return;
@@ -57,9 +57,19 @@ inline void extend_tensor_sweep(const Tensor6& b, const Field3& known, int sweep
 
 // Beyond the band: B = I (written only where it is not I already: far from the solid B stays I
 // from one substep to the next, and a read costs less than a write).
-inline void reset_unknown_tensor(const Tensor6& b, const Field3& known, const Box& box) {
+inline void reset_unknown_tensor(const Tensor6& b, const WindowField& known, const Box& box) {
   for_each_cell("eulerfsi::solid::b_reset_far", box, KOKKOS_LAMBDA(int i, int j, int k) {
     if (known(i, j, k) != 0.0) return;
+    bool identity = true;
+    for (int c = 0; c < kTensorComponents; ++c) identity = identity && b.c[c](i, j, k) == (c < 3 ? 1.0 : 0.0);
+    if (!identity)
+      for (int c = 0; c < kTensorComponents; ++c) b.c[c](i, j, k) = c < 3 ? 1.0 : 0.0;
+  });
+}
+
+// B = I on `box` (written only where it is not I already).
+inline void reset_tensor(const Tensor6& b, const Box& box) {
+  for_each_cell("eulerfsi::solid::b_reset", box, KOKKOS_LAMBDA(int i, int j, int k) {
     bool identity = true;
     for (int c = 0; c < kTensorComponents; ++c) identity = identity && b.c[c](i, j, k) == (c < 3 ? 1.0 : 0.0);
     if (!identity)
@@ -73,7 +83,7 @@ inline void reset_unknown_tensor(const Tensor6& b, const Field3& known, const Bo
 // as their mirror image), and no exchange is needed between sweeps.
 // Sweep s can only reach cells within s face steps of a known one, so the sweeps run on the
 // bounding box of the known cells grown by s (the particle, not the whole domain).
-inline void extend_tensor(const Tensor6& b, const Field3& known, const WindowField& psi, double psi_solid, int band,
+inline void extend_tensor(const Tensor6& b, const WindowField& known, const WindowField& psi, double psi_solid, int band,
                           const Box& box) {
   auto grown = [](const Box& x, int g) {
     return Box{{x.lo[0] - g, x.lo[1] - g, x.lo[2] - g}, {x.hi[0] + g, x.hi[1] + g, x.hi[2] + g}};

@@ -73,9 +73,11 @@ def case_name(re, we, r0, visc, rest=False, appendix=False):
     return ("appendix_" if appendix else "") + name
 
 
-# The measured step of a paper-model particle in pipe flow, one core (bench/RESULTS.md, BM_Step
-# 128 x 64^2, particle:1): what the paper-resolution estimate scales.
-PAPER_MODEL_NS_PER_CELL_STEP = 588
+# The measured step of a paper-model particle in pipe flow, one core (bench/RESULTS.md, 128 x 64^2):
+# the flow's 130 ns (BM_Step) x 1.32, the particle's step against the flow's after 200 steps
+# (BM_StepPairPaper; its kernels run on psi's support, a smaller share of the grid at 48 cells per
+# d, so an upper bound): what the paper-resolution estimate scales.
+PAPER_MODEL_NS_PER_CELL_STEP = 172
 
 
 def case_text(res, re, we, r0, visc, rest, title):

@@ -8,6 +8,7 @@
 #if defined(KOKKOS_ENABLE_HIP)
 #include <hip/hip_runtime.h>
 #endif
+#include "solid/paper_model.hpp"
 #include "solid/reference_map_model.hpp"
 #include "solid/rigid_model.hpp"
 
@@ -30,19 +31,20 @@ constexpr double kDeviceFftWorkFields = 1.0;
 constexpr double kImplicitViscosityFields = 2.0;
 // Field snapshots: total psi, the elastic energy density and the three centred velocity components.
 constexpr double kSnapshotFields = 5.0;
-// Every body: psi, B and B before the update (6 + 6) (src/solid/solid_body.hpp): on the whole
-// slab for the paper model, on the body's window for the reference map and the rigid body
-// (src/solid/solid_window.hpp).
+// Every body: psi, B and B before the update (6 + 6) (src/solid/solid_body.hpp), on the body's
+// window (src/solid/solid_window.hpp; the whole slab for a paper-model layer, or with sharpening
+// or without the B extension).
 constexpr double kBodyFields = 13.0;
-// The model's own: RK3 rhs and memory of psi and B (paper), or of q = xi - x (3 + 3 + 3), its
-// level and the diagnostics' psi at a second edge width (map, on the window).
-constexpr double kPaperModelFields = 14.0;
+// The model's own: RK3 rhs and memory of psi and B and the extension's marks (paper), or of
+// q = xi - x (3 + 3 + 3), its level and the diagnostics' psi at a second edge width (map).
+constexpr double kPaperModelFields = 15.0;
 constexpr double kReferenceMapFields = 11.0;
 // What reading a checkpoint (a restart) puts on the whole slab for a reference-map body before it
 // moves onto its window: psi, B, q and its level (writing packs from the window directly).
 constexpr double kReferenceMapStoredFields = 11.0;
-// ... and for a rigid body: psi and B.
+// ... and for a rigid body or a paper-model body: psi and B.
 constexpr double kRigidStoredFields = 7.0;
+constexpr double kPaperStoredFields = 7.0;
 // Allocator and library overhead (FFTW plans, MPI buffers, the Kokkos runtime) on top.
 constexpr double kOverheadBytes = 64.0 * 1024 * 1024;
 
@@ -128,8 +130,10 @@ MemoryEstimate estimate_memory(const CaseConfig& cfg, const Grid& grid) {
       continue;
     }
     if (s.model == SolidModelKind::Paper) {
-      m.solid_fields += kBodyFields + kPaperModelFields;
-      m.solid_peak_fields += kBodyFields + kPaperModelFields;
+      const double fields = kBodyFields + kPaperModelFields;
+      m.solid_fields += fields * PaperModel::window_cells(s, grid, false) / m.slab_cells;
+      m.solid_peak_fields += fields * PaperModel::window_cells(s, grid, !cfg.flow.frame_follows_particle) / m.slab_cells +
+                             kPaperStoredFields;
       continue;
     }
     const double fields = kBodyFields + kReferenceMapFields;

@@ -12,7 +12,7 @@ namespace eulerfsi {
 struct MemoryEstimate {
   double flow_fields = 0.0;   // whole-slab fields of the flow solver, output and Poisson work arrays
   // every body's fields (shared ones and the model's own) in whole-slab equivalents: a body on a
-  // window (the reference map) counts its window's share of the slab, at its initial position
+  // window (every sphere) counts its window's share of the slab, at its initial position
   double solid_fields = 0.0;
   // the most they reach: a window holding every x-plane while the body crosses the periodic end
   // (grid at rest), and the whole-slab fields a checkpoint is read into (a restart)

@@ -22,7 +22,7 @@ std::shared_ptr<SolidModel> make_solid_model(const SolidConfig& solid, const Cas
     case SolidModelKind::Paper:
       break;
   }
-  return std::make_shared<PaperModel>(cfg, grid, bc, comm);
+  return std::make_shared<PaperModel>(solid, cfg, grid, bc, comm);
 }
 
 }  // namespace eulerfsi

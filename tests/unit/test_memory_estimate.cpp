@@ -103,6 +103,20 @@ TEST(MemoryEstimate, AReferenceMapParticleNeedsAtMost1_3xTheFlow) {
   EXPECT_LE(with_particle, 1.3 * flow);
 }
 
+// Issue 30's bound: one paper-model particle needs at most 1.3x the flow's memory too, its fields on a
+// window around psi's support (src/solid/paper_model.hpp; on the whole slab it took 2.5x).
+TEST(MemoryEstimate, APaperModelParticleNeedsAtMost1_3xTheFlow) {
+  if (!Kokkos::SpaceAccessibility<Kokkos::HostSpace, MemSpace>::accessible)
+    GTEST_SKIP() << "the fields live in GPU memory, which the resident set does not show";
+  ASSERT_TRUE(kFixedMmapThreshold);
+  double flow = 0.0, with_particle = 0.0, estimate = 0.0;
+  measure(pipe(0), flow, estimate);
+  measure(pipe(1), with_particle, estimate);
+  std::printf("flow %.1f MiB, with a paper-model particle %.1f MiB: %.2fx\n", flow / 1048576.0,
+              with_particle / 1048576.0, with_particle / flow);
+  EXPECT_LE(with_particle, 1.3 * flow);
+}
+
 // A rigid body stores psi, B and B_prev on its window too: the flow's memory and a little more.
 TEST(MemoryEstimate, ARigidParticleNeedsAtMost1_1xTheFlow) {
   if (!Kokkos::SpaceAccessibility<Kokkos::HostSpace, MemSpace>::accessible)
