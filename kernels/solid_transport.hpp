@@ -150,17 +150,24 @@ inline void rk3_tensor_update(const Tensor6& b, const Tensor6& b0, const Tensor6
     rk3_field_update(b.c[s], b0.c[s], rhs.c[s], rhs_old.c[s], dt * gamma, dt * zeta, box, "eulerfsi::solid::b_update");
 }
 
+namespace detail {
+// The seven fields' data of rk3_body_update (at namespace scope: nvcc refuses a function-local
+// type in a device lambda's capture).
+struct BodyUpdatePointers {
+  static constexpr int kFields = kTensorComponents + 1;
+  double* out[kFields];
+  const double *in[kFields], *r[kFields], *ro[kFields];
+};
+}  // namespace detail
+
 // psi and B's six components in one pass (one launch instead of seven; the same arithmetic as
 // rk3_scalar_update and rk3_tensor_update), B0 the tensor before the substep; every field on one
 // window.
 inline void rk3_body_update(const WindowField& psi, const WindowField& psi_rhs, const WindowField& psi_rhs_old,
                             const Tensor6& b, const Tensor6& b0, const Tensor6& rhs, const Tensor6& rhs_old, double dt,
                             double gamma, double zeta, const Box& box) {
-  constexpr int kFields = kTensorComponents + 1;
-  struct Pointers {
-    double* out[kFields];
-    const double *in[kFields], *r[kFields], *ro[kFields];
-  } p;
+  constexpr int kFields = detail::BodyUpdatePointers::kFields;
+  detail::BodyUpdatePointers p;
   for (int s = 0; s < kFields; ++s) {
     const bool scalar = s == kTensorComponents;
     p.out[s] = scalar ? psi.data.data() : b.c[s].data.data();

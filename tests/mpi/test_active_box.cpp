@@ -19,12 +19,19 @@
 // substep for 120 substeps and differentiated on a grid of h = 1/24 (psi, B); measured 1.4e-12 of
 // a field's maximum on 2 threads. 1e-10 bounds that with a wide margin; every wrong margin or
 // skipped ghost fill tried (x-edge fill, z periodic fill, wall extrapolation) gave O(1).
+// With the surface ramp (solid.map_ramp = 0.25) the extension's weights are a smooth function of
+// each cell's depth, whose slope (up to 1.5 / ramp = 6 / h) passes the sums' round-off on to the
+// fits every substep instead of leaving it below a threshold: on 2 threads the two runs then
+// part by up to 5e-9 (channel and window cases). The ramp is therefore checked where each rank
+// runs one thread, bit for bit (each sum then adds the same terms in the same order, the box's
+// extra cells adding exact zeros), and skipped on more threads.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <tuple>
 
 #include "solid/reference_map_model.hpp"
 #include "support/flow_case.hpp"
@@ -126,10 +133,17 @@ void compare(const test::CoupledCase& a, const WindowField& fa, const WindowFiel
 
 }  // namespace
 
-class ActiveBox : public ::testing::TestWithParam<int> {};
+// (case: 0 pipe, 1 channel, 2 windows; solid.map_ramp in cells)
+class ActiveBox : public ::testing::TestWithParam<std::tuple<int, double>> {};
 
 TEST_P(ActiveBox, SameFieldsAsTheWholeSlab) {
-  const CaseConfig cfg = GetParam() == 0 ? two_spheres() : GetParam() == 1 ? spheres_at_wall_and_z_boundary() : spheres_on_windows();
+  const int which = std::get<0>(GetParam());
+  const double ramp = std::get<1>(GetParam());
+  CaseConfig cfg = which == 0 ? two_spheres() : which == 1 ? spheres_at_wall_and_z_boundary() : spheres_on_windows();
+  for (auto& s : cfg.solids) s.map_ramp = ramp;
+  const bool one_thread = ExecSpace().concurrency() == 1;
+  if (ramp > 0.0 && !one_thread) GTEST_SKIP() << "the surface ramp is compared bit for bit on one thread per rank";
+  const double tolerance = one_thread ? 0.0 : 1e-10;
   test::CoupledCase boxed(cfg), whole(cfg);
   constexpr int kSteps = 70;
   run(boxed, false, kSteps);
@@ -147,29 +161,29 @@ TEST_P(ActiveBox, SameFieldsAsTheWholeSlab) {
   for (int c = 0; c < 3; ++c) {
     compare(boxed, boxed.flow.state().vel.c[c], whole.flow.state().vel.c[c], diff, scale);
     note(diff, scale);
-    EXPECT_LE(diff, 1e-10 * scale) << "velocity component " << c;
+    EXPECT_LE(diff, tolerance * scale) << "velocity component " << c;
   }
   compare(boxed, boxed.flow.state().p, whole.flow.state().p, diff, scale);
   note(diff, scale);
-  EXPECT_LE(diff, 1e-10 * scale) << "pressure";
+  EXPECT_LE(diff, tolerance * scale) << "pressure";
   for (size_t n = 0; n < cfg.solids.size(); ++n) {
     const auto& bb = boxed.solids.bodies()[n];
     const auto& bw = whole.solids.bodies()[n];
     compare(boxed, bb.psi, bw.psi, diff, scale);
     EXPECT_GT(scale, 0.99) << "body " << n << " has left the pipe";
     note(diff, scale);
-    EXPECT_LE(diff, 1e-10 * scale) << "psi of body " << n;
+    EXPECT_LE(diff, tolerance * scale) << "psi of body " << n;
     for (int c = 0; c < kernels::kTensorComponents; ++c) {
       compare(boxed, bb.b.c[c], bw.b.c[c], diff, scale, c < 3 ? 1.0 : 0.0);
       note(diff, scale);
-      EXPECT_LE(diff, 1e-10 * scale) << "B component " << c << " of body " << n;
+      EXPECT_LE(diff, tolerance * scale) << "B component " << c << " of body " << n;
     }
   }
   if (boxed.comm.rank() == 0)
     std::printf("%s: active box %ld of %ld owned cells on rank 0; largest difference %.2e of a field's maximum\n",
-                GetParam() == 0 ? "pipe" : GetParam() == 1 ? "channel" : "windows", box.size(), slab.size(), worst);
+                which == 0 ? "pipe" : which == 1 ? "channel" : "windows", box.size(), slab.size(), worst);
   // the third case's windows are smaller than the slab, and the carried sphere's moved with it
-  if (GetParam() == 2) {
+  if (which == 2) {
     for (const auto& body : boxed.solids.bodies()) EXPECT_LT(body.psi.window().size(), boxed.grid.all().size());
     EXPECT_GE(dynamic_cast<const ReferenceMapModel&>(*boxed.solids.bodies()[0].model).window_moves(), 2);
   }
@@ -180,4 +194,4 @@ TEST_P(ActiveBox, SameFieldsAsTheWholeSlab) {
                   body.psi.window().size(), boxed.grid.all().size());
 }
 
-INSTANTIATE_TEST_SUITE_P(PipeAndChannel, ActiveBox, ::testing::Values(0, 1, 2));
+INSTANTIATE_TEST_SUITE_P(PipeAndChannel, ActiveBox, ::testing::Combine(::testing::Values(0, 1, 2), ::testing::Values(0.0, 0.25)));
