@@ -638,28 +638,40 @@ inline void volume_and_area(const WindowField& psi, const double h[3], const Box
   area = a;
 }
 
-// Ghosts of q at a wall (y or z): linear extrapolation from the first two interior cells,
-// q(-m) = q(0) - m (q(1) - q(0)), exact for a linear map (the mirror fill of a scalar is not).
+// Ghosts of q at a wall (y or z). Where the first interior cell is solid (level kLevelSolid: a
+// body bonded to the wall, the layer), the no-slip wall holds its material where it started, so
+// q = 0 on the wall: the odd reflection q(-m) = -q(m - 1), exact for q linear and 0 at the wall,
+// which lets the elastic stress, not only the viscous one, hold the body (a purely elastic layer
+// slides on a wall it is not bonded to). Elsewhere (fluid, the extension of a body near the wall)
+// linear extrapolation from the first two interior cells, q(-m) = q(0) - m (q(1) - q(0)), exact for
+// a linear map (the mirror fill of a scalar is not).
 // low / high: which of the two walls (a window may hold the ghosts of one only).
-inline void extrapolate_wall_ghosts(const Vector3& q, int dir, int n_interior, const Box& all, bool low = true,
-                                    bool high = true) {
+inline void extrapolate_wall_ghosts(const Vector3& q, const WindowField& level, int dir, int n_interior, const Box& all,
+                                    bool low = true, bool high = true) {
   const int lo = kGhost, hi = kGhost + n_interior - 1;
   Box plane = all;
   plane.lo[dir] = 0;
   plane.hi[dir] = 1;
   // (i, s, k) for dir = 1, (i, j, s) for dir = 2: s is the wall-normal index
   const int sj = dir == 1, sk = dir == 2;
+  const WindowField l = level;
   for (int a = 0; a < 3; ++a) {
     const WindowField f = q.c[a];
     for_each_cell("eulerfsi::refmap::wall_ghosts", plane, KOKKOS_LAMBDA(int i, int j, int k) {
       const int j0 = j * (1 - sj), k0 = k * (1 - sk);
       if (low) {
+        const bool bonded = l(i, j0 + sj * lo, k0 + sk * lo) == kLevelSolid;
         const double qlo = f(i, j0 + sj * lo, k0 + sk * lo), qlo1 = f(i, j0 + sj * (lo + 1), k0 + sk * (lo + 1));
-        for (int m = 1; m <= kGhost; ++m) f(i, j0 + sj * (lo - m), k0 + sk * (lo - m)) = qlo - m * (qlo1 - qlo);
+        for (int m = 1; m <= kGhost; ++m)
+          f(i, j0 + sj * (lo - m), k0 + sk * (lo - m)) =
+              bonded ? -f(i, j0 + sj * (lo + m - 1), k0 + sk * (lo + m - 1)) : qlo - m * (qlo1 - qlo);
       }
       if (high) {
+        const bool bonded = l(i, j0 + sj * hi, k0 + sk * hi) == kLevelSolid;
         const double qhi = f(i, j0 + sj * hi, k0 + sk * hi), qhi1 = f(i, j0 + sj * (hi - 1), k0 + sk * (hi - 1));
-        for (int m = 1; m <= kGhost; ++m) f(i, j0 + sj * (hi + m), k0 + sk * (hi + m)) = qhi - m * (qhi1 - qhi);
+        for (int m = 1; m <= kGhost; ++m)
+          f(i, j0 + sj * (hi + m), k0 + sk * (hi + m)) =
+              bonded ? -f(i, j0 + sj * (hi - m + 1), k0 + sk * (hi - m + 1)) : qhi - m * (qhi1 - qhi);
       }
     });
   }

@@ -268,6 +268,8 @@ def main(argv=None):
     t.add_argument("out_root")
     t.add_argument("--average-from", type=float, default=0.5)
     args = p.parse_args(argv)
+    if hasattr(args, "average_from") and not 0.0 <= args.average_from < 1.0:
+        p.error(f"--average-from {args.average_from}: a fraction of the run's last time, in [0, 1) (0.5: the second half)")
     try:
         if args.verb == "compare":
             compare(args.maps, args.out)

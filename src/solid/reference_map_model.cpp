@@ -340,7 +340,8 @@ void ReferenceMapModel::update_active_box(SolidBody& body) {
   window_.hold(active_.grown(kReach, grid_.all()), window_members(body));
 }
 
-// Periodic directions and ranks by the halo exchange (q is periodic); walls by linear extrapolation.
+// Periodic directions and ranks by the halo exchange (q is periodic); walls by
+// kernels::extrapolate_wall_ghosts (linear extrapolation, or 0 on the wall under a bonded solid).
 // q changed only on `changed`: the wall ghosts are extrapolated again on its x-planes, and only at
 // a wall it comes within two cells of (the extrapolation reads the first two owned cells).
 void ReferenceMapModel::fill_map_ghosts(const Box& changed_box) {
@@ -349,7 +350,7 @@ void ReferenceMapModel::fill_map_ghosts(const Box& changed_box) {
   const Box planes = intersection(wall_ghost_planes(changed), window_.local());
   for (int d = 1; d < 3; ++d) {
     const bool low = near_wall(changed, d, false), high = near_wall(changed, d, true);
-    if (low || high) kernels::extrapolate_wall_ghosts(q_, d, grid_.n[d], planes, low, high);
+    if (low || high) kernels::extrapolate_wall_ghosts(q_, level_, d, grid_.n[d], planes, low, high);
   }
 }
 
@@ -414,7 +415,7 @@ void ReferenceMapModel::fill_ghosts(SolidBody& body) {
   bc_->fill_scalar(level_, everywhere);
   for (int d = 1; d < 3; ++d)
     if (grid_.bc[d] == Boundary::Wall) {
-      kernels::extrapolate_wall_ghosts(q_, d, grid_.n[d], all);
+      kernels::extrapolate_wall_ghosts(q_, level_, d, grid_.n[d], all);
       kernels::clear_wall_ghosts(level_, d, grid_.n[d], all);
     }
   bc_->fill_scalar(body.psi.data);

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 #include "kernels/reference_map.hpp"
 
@@ -292,4 +293,51 @@ TEST(MapExtrapolation, RefusesFieldsOnDifferentWindows) {
   const int origin[3] = {1, 0, 0};
   const WindowField shifted(Field3("shifted", kN, kN, kN), origin);
   EXPECT_THROW(kernels::finish_deferred_fits(m.q, shifted, shifted, shifted, kLastSweep, kInterior), std::logic_error);
+}
+
+// The wall ghosts of q (y walls of a window of 4 x (6 + 2 kGhost) x 4 cells, h = 1): a column whose
+// first interior cell is solid holds its material on the wall (q = 0 there: a bonded layer), the
+// others continue q linearly. q is affine in y with a non-zero wall value, so the two rules differ
+// everywhere; with the wall value 0 they agree (the bonded ghost is exact for such a q too).
+TEST(MapExtrapolation, WallGhostsHoldABondedSolidAndContinueTheRest) {
+  constexpr int kNy = 6, kCells = kNy + 2 * kGhost;
+  for (const double wall_value : {0.3, 0.0}) {
+    kernels::Vector3 q;
+    const WindowField level(Field3("level", 4, kCells, 4));
+    auto hl = Kokkos::create_mirror_view(level.data);
+    std::vector<decltype(Kokkos::create_mirror_view(level.data))> hq;
+    // q_a(y) = wall_value + s_a y, y the distance from the low wall; the high wall at y = kNy
+    const double slope[3] = {0.05, -0.02, 0.01};
+    auto exact = [&](int a, int j) { return wall_value + slope[a] * (j - kGhost + 0.5); };
+    for (int a = 0; a < 3; ++a) {
+      q.c[a] = WindowField(Field3("q", 4, kCells, 4));
+      hq.push_back(Kokkos::create_mirror_view(q.c[a].data));
+      for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < kCells; ++j)
+          for (int k = 0; k < 4; ++k) hq[a](i, j, k) = kGhost <= j && j < kGhost + kNy ? exact(a, j) : -99.0;
+      Kokkos::deep_copy(q.c[a].data, hq[a]);
+    }
+    // columns i < 2 solid next to the low wall, columns k < 2 solid next to the high wall
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < kCells; ++j)
+        for (int k = 0; k < 4; ++k)
+          hl(i, j, k) = (j == kGhost && i < 2) || (j == kGhost + kNy - 1 && k < 2) ? kernels::kLevelSolid : 0.0;
+    Kokkos::deep_copy(level.data, hl);
+    kernels::extrapolate_wall_ghosts(q, level, 1, kNy, Box{{0, 0, 0}, {4, kCells, 4}});
+    for (int a = 0; a < 3; ++a) {
+      Kokkos::deep_copy(hq[a], q.c[a].data);
+      for (int i = 0; i < 4; ++i)
+        for (int k = 0; k < 4; ++k)
+          for (int m = 1; m <= kGhost; ++m) {
+            const int low = kGhost - m, high = kGhost + kNy - 1 + m;
+            // bonded: q(-m) = -q(m - 1) about the wall; else the affine q continued
+            const double want_low = i < 2 ? -exact(a, kGhost + m - 1) : exact(a, low);
+            const double want_high = k < 2 ? -exact(a, kGhost + kNy - m) : exact(a, high);
+            EXPECT_NEAR(hq[a](i, low, k), want_low, 1e-14) << "low wall, column " << i << ", ghost " << m;
+            EXPECT_NEAR(hq[a](i, high, k), want_high, 1e-14) << "high wall, column " << k << ", ghost " << m;
+            if (wall_value == 0.0 && a == 0 && i < 2)  // a q that vanishes on the wall: both rules
+              EXPECT_NEAR(hq[a](i, low, k), exact(a, low), 1e-14);
+          }
+    }
+  }
 }
