@@ -20,9 +20,11 @@ The table (OUT_ROOT/liftmap.csv, liftmap.png) takes, per position, the mean over
 the run (t >= average_from * t_last) of the force the fluid exerts on the body, F = -hold_F (the
 holding force's opposite), its radial part F_r = F . e_r, the spread of F_r over that window
 (half the difference of the means of its two halves: a drift bound), the slip u_p - u_f (u_f the
-laminar profile there) and the spin about e_x x e_r. Where every position lies on one ray from the
-axis (--radii; --points along a duct's wall bisector or diagonal) it finds the zeros of F_r by
-linear interpolation and their stability from the slope (dF_r/dr < 0: stable).
+laminar profile there) and the spin about e_x x e_r. Along every ray from the axis that holds two
+or more positions (--radii; --points along a duct's wall bisector, its diagonal, ...) it finds the
+zeros of F_r by linear interpolation and their stability along the ray from the slope (dF_r/dr < 0:
+stable), written to liftmap_zeros.csv (r/R, stable, the ray's angle from +y in degrees, y, z);
+stability across a ray is read from a position beside it (the duct's plot draws F_y, F_z arrows).
 `compare` draws the F_r of several finished maps (their liftmap.csv, liftmap_zeros.csv) on one
 figure, each with its label (e.g. "Re = 100, 8 cells per d"), the zeros marked (filled: stable).
 Exit code: 0 done, 1 a run failed, 2 a usage error.
@@ -98,6 +100,12 @@ def run_one(cmd, log, threads):
         return subprocess.run(cmd, stdout=f, stderr=subprocess.STDOUT, env=env).returncode
 
 
+def read_positions(root):
+    """(name, y, z) of every position run in a map's folder."""
+    with open(root / "liftmap_positions.csv") as f:
+        return [(row["position"], float(row["y"]), float(row["z"])) for row in csv.DictReader(f)]
+
+
 def read_rows(path):
     with open(path) as f:
         return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
@@ -153,7 +161,7 @@ def summarise(case, run_dir, y, z, average_from):
 
 
 def zeros(table):
-    """Sign changes of F_r between consecutive radii: (r, stable) by linear interpolation."""
+    """Sign changes of F_r between consecutive radii of one ray: (r, stable) by linear interpolation."""
     out = []
     for a, b in zip(table, table[1:]):
         fa, fb = a["F_r"], b["F_r"]
@@ -163,30 +171,52 @@ def zeros(table):
     return out
 
 
+def ray_angle(e):
+    """The direction of a position from the axis, in degrees from +y (0: a duct's wall bisector, 45: its diagonal)."""
+    return round(math.degrees(math.atan2(e["z"], e["y"])), 6)
+
+
+def zeros_by_ray(table):
+    """The zeros of F_r along every ray from the axis that holds two or more positions (a pipe's
+    radii; a duct's wall bisector and diagonal): (angle, r/R, y, z, stable along the ray)."""
+    rays = {}
+    for e in table:
+        if math.hypot(e["y"], e["z"]) > 0:
+            rays.setdefault(ray_angle(e), []).append(e)
+    out = []
+    for angle, ray in sorted(rays.items()):
+        ray.sort(key=lambda e: e["r_over_R"])
+        scale = math.hypot(ray[0]["y"], ray[0]["z"]) / ray[0]["r_over_R"]  # R
+        for r, stable in zeros(ray):
+            a = math.radians(angle)
+            out.append((angle, r, r * scale * math.cos(a), r * scale * math.sin(a), stable))
+    return out
+
+
 def on_one_ray(entries):
-    """True when every position lies on one ray from the axis (a pipe's radii, a duct's wall
-    bisector or diagonal): F_r along it then has zeros to find."""
+    """True when every position lies on one ray from the axis (a pipe's radii): F_r against r/R is
+    then the plot; otherwise the arrows (F_y, F_z) over the cross-section."""
     dirs = [(y / math.hypot(y, z), z / math.hypot(y, z)) for _, y, z in entries if math.hypot(y, z) > 0]
     return all(abs(a[0] - dirs[0][0]) < 1e-9 and abs(a[1] - dirs[0][1]) < 1e-9 for a in dirs)
 
 
-def write_table(case, root, entries, average_from, radial):
+def write_table(case, root, entries, average_from):
     table = [summarise(case, root / name, y, z, average_from) for name, y, z in entries]
-    if radial:
-        table.sort(key=lambda e: e["r_over_R"])
+    table.sort(key=lambda e: (ray_angle(e), e["r_over_R"]))
     cols = list(table[0].keys())
     with open(root / "liftmap.csv", "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=cols)
         w.writeheader()
         w.writerows(table)
-    found = zeros(table) if radial else []
+    found = zeros_by_ray(table)
     with open(root / "liftmap_zeros.csv", "w") as f:
-        f.write("r_over_R,stable\n")
-        for r, stable in found:
-            f.write(f"{r:.6g},{int(stable)}\n")
-    for r, stable in found:
-        print(f"equilibrium r/R = {r:.4f} ({'stable' if stable else 'unstable'})")
-    plot(table, found, root / "liftmap.png", radial)
+        f.write("r_over_R,stable,ray_deg,y,z\n")
+        for angle, r, y, z, stable in found:
+            f.write(f"{r:.6g},{int(stable)},{angle:g},{y:.6g},{z:.6g}\n")
+    for angle, r, y, z, stable in found:
+        print(f"equilibrium r/R = {r:.4f} at ({y:.4f}, {z:.4f}), ray {angle:g} deg "
+              f"({'stable' if stable else 'unstable'} along it)")
+    plot(table, found, root / "liftmap.png", on_one_ray(entries))
     return table, found
 
 
@@ -199,13 +229,15 @@ def plot(table, found, path, radial):
         r = [e["r_over_R"] for e in table]
         ax.errorbar(r, [e["F_r"] for e in table], yerr=[e["F_r_spread"] for e in table], marker="o", capsize=3)
         ax.axhline(0.0, color="0.6", lw=0.8)
-        for z, stable in found:
-            ax.plot([z], [0.0], marker="o", ms=9, mfc="k" if stable else "w", mec="k", ls="none")
+        for _, r0, _, _, stable in found:
+            ax.plot([r0], [0.0], marker="o", ms=9, mfc="k" if stable else "w", mec="k", ls="none")
         ax.set_xlabel("r / R")
         ax.set_ylabel("F_r (fluid on the held sphere)")
     else:
         ax.quiver([e["y"] for e in table], [e["z"] for e in table], [e["F_y"] for e in table],
                   [e["F_z"] for e in table])
+        for _, _, y0, z0, stable in found:  # stable along its ray; across it, read the arrows
+            ax.plot([y0], [z0], marker="o", ms=8, mfc="k" if stable else "w", mec="k", ls="none")
         ax.set_xlabel("y")
         ax.set_ylabel("z")
         ax.set_aspect("equal")
@@ -280,9 +312,12 @@ def main(argv=None):
             root = Path(args.out_root)
             root.mkdir(parents=True, exist_ok=True)
             (root / "liftmap_case.toml").write_text(Path(args.case).read_text())
+            # positions added to a folder join those already there (the table verb reads them all)
+            known = read_positions(root) if (root / "liftmap_positions.csv").exists() else []
+            names = {e[0] for e in known}
             with open(root / "liftmap_positions.csv", "w") as f:
                 f.write("position,y,z\n")
-                for name, y, z in entries:
+                for name, y, z in known + [e for e in entries if e[0] not in names]:
                     f.write(f"{name},{y!r},{z!r}\n")
             failed = []
             # the cores shared out: OpenMP threads that outnumber them spin against each other
@@ -300,9 +335,9 @@ def main(argv=None):
                     print(f"{futures[fut]}: exit {rc}", flush=True)
                     if rc != 0:
                         failed.append(futures[fut])
-            done = [e for e in entries if e[0] not in failed]
+            done = [e for e in read_positions(root) if e[0] not in failed and (root / e[0] / "particle.csv").exists()]
             if done:
-                write_table(case, root, done, args.average_from, on_one_ray(done))
+                write_table(case, root, done, args.average_from)
             if failed:
                 print(f"failed: {', '.join(sorted(failed))} (logs in {root})", file=sys.stderr)
                 return 1
@@ -311,12 +346,11 @@ def main(argv=None):
         if not (root / "liftmap_positions.csv").exists():
             raise LiftMapError(f"'{root}' is not a lift map's folder (no liftmap_positions.csv)")
         case = read_case(root / "liftmap_case.toml")
-        with open(root / "liftmap_positions.csv") as f:
-            entries = [(row["position"], float(row["y"]), float(row["z"])) for row in csv.DictReader(f)]
+        entries = read_positions(root)
         entries = [e for e in entries if (root / e[0] / "particle.csv").exists()]
         if not entries:
             raise LiftMapError(f"no position in '{root}' has a particle.csv yet")
-        write_table(case, root, entries, args.average_from, on_one_ray(entries))
+        write_table(case, root, entries, args.average_from)
         return 0
     except LiftMapError as e:
         print(f"error: {e}", file=sys.stderr)

@@ -4,7 +4,7 @@
 # find the zeros at 0.3 (unstable: F_r rises through zero) and 0.7 (stable) within the linear
 # interpolation's bound (dr)^2 |F''| / (8 |F'|) = 0.00625 for dr = 0.1, continue a position
 # from its checkpoint with --restart, refuse a case with two bodies, and report a failed run; pass
-# --model, find the zeros along a ray of --points (a duct's diagonal), and draw several maps (compare).
+# --model, find the zeros along every ray of --points (a duct's bisector and diagonal), and draw several maps (compare).
 #   usage: test_liftmap.sh WORK_DIR
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -72,11 +72,29 @@ PY
 [ "$(grep -c -- '--restart' "$work/map/args.log")" = 2 ] || fail "the continued runs did not --restart"
 # the table again from the folder alone
 /usr/bin/python3 "$root/tools/eulerfsi_liftmap.py" table "$work/map" > /dev/null || fail "table failed"
-# positions along a duct's diagonal (--points on one ray) get their zeros too; the soft model is passed
+# a duct's points on two rays (wall bisector, diagonal) and one beside them: each ray gets its two
+# zeros, placed at their (y, z); the lone point none; the soft model is passed
 /usr/bin/python3 "$root/tools/eulerfsi_liftmap.py" run "$work/case.toml" --model reference-map --binary "$stub" \
-  --points 0.1:0.1,0.2:0.2,0.3:0.3 --out-root "$work/diag" > "$work/diag.txt" 2>&1 || fail "the diagonal map failed"
+  --points 0.1:0,0.2:0,0.3:0,0.4:0,0.1:0.1,0.2:0.2,0.3:0.3,0.3:0.05 --out-root "$work/diag" > "$work/diag.txt" 2>&1 ||
+  fail "the duct map failed"
 grep -q 'solid\[0\].model="reference-map"' "$work/diag/args.log" || fail "--model not passed"
-[ "$(tail -n +2 "$work/diag/liftmap_zeros.csv" | wc -l)" = 2 ] || fail "not both zeros along the diagonal: $(cat "$work/diag/liftmap_zeros.csv")"
+/usr/bin/python3 - "$work/diag/liftmap_zeros.csv" <<'PY'
+import csv, math, sys
+rows = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(open(sys.argv[1]))]
+assert len(rows) == 4, rows
+for ray, dr in ((0.0, 0.2), (45.0, 0.2 * math.sqrt(2))):
+    (a, b) = sorted((r for r in rows if r["ray_deg"] == ray), key=lambda r: r["r_over_R"])
+    bound = dr * dr * 2 / (8 * 0.4) + 1e-9  # the interpolation's bound, as above, for this ray's spacing
+    assert abs(a["r_over_R"] - 0.3) < bound and a["stable"] == 0, rows
+    assert abs(b["r_over_R"] - 0.7) < bound and b["stable"] == 1, rows
+    c = math.radians(ray)
+    assert abs(b["y"] - 0.5 * b["r_over_R"] * math.cos(c)) < 1e-6 and abs(b["z"] - 0.5 * b["r_over_R"] * math.sin(c)) < 1e-6, rows
+print("duct: two zeros on the wall bisector and two on the diagonal, placed")
+PY
+# positions run later into the same folder join the table
+/usr/bin/python3 "$root/tools/eulerfsi_liftmap.py" run "$work/case.toml" --binary "$stub" --points 0.2:0.05 \
+  --out-root "$work/diag" > /dev/null 2>&1 || fail "the added position failed"
+[ "$(tail -n +2 "$work/diag/liftmap.csv" | wc -l)" = 9 ] || fail "the table lost the earlier positions"
 # several maps on one figure, and one that does not exist refused with exit 2
 /usr/bin/python3 "$root/tools/eulerfsi_liftmap.py" compare "$work/map:pipe" "$work/diag:diagonal" \
   --out "$work/compare.png" > /dev/null || fail "compare failed"

@@ -69,7 +69,7 @@ LayerError layer_error(int ny, SolidModelKind model = SolidModelKind::Paper, con
 }  // namespace
 
 // Both solid models on the same grids. The reference map carries the layer's displacement q_x(y)
-// (linear within a cell), its wall ghosts are linear extrapolations, and its psi edge is a smooth
+// (linear within a cell), its wall ghosts bond the solid to the wall (odd reflection), its psi edge a smooth
 // 3-cell ramp: measured 3.5e-3 -> 9.3e-4 (second order) against the paper model's 3.6e-3 -> 1.3e-3.
 // Each must fall when h halves (ratio > 1.5) and stay below the bound; the reference map may not be
 // worse than the paper model on the finer grid.
