@@ -234,8 +234,12 @@ def plot(table, found, path, radial):
         ax.set_xlabel("r / R")
         ax.set_ylabel("F_r (fluid on the held sphere)")
     else:
-        ax.quiver([e["y"] for e in table], [e["z"] for e in table], [e["F_y"] for e in table],
-                  [e["F_z"] for e in table])
+        # directions as arrows of one length, the magnitude as their colour (it spans decades)
+        mag = [max(math.hypot(e["F_y"], e["F_z"]), 1e-300) for e in table]
+        q = ax.quiver([e["y"] for e in table], [e["z"] for e in table], [e["F_y"] / m for e, m in zip(table, mag)],
+                      [e["F_z"] / m for e, m in zip(table, mag)], [math.log10(m) for m in mag], cmap="viridis",
+                      angles="xy", pivot="middle")
+        fig.colorbar(q, ax=ax, label="log10 |F| (fluid on the held sphere)")
         for _, _, y0, z0, stable in found:  # stable along its ray; across it, read the arrows
             ax.plot([y0], [z0], marker="o", ms=8, mfc="k" if stable else "w", mec="k", ls="none")
         ax.set_xlabel("y")
@@ -258,18 +262,24 @@ def compare(pairs, out):
         if not (root / "liftmap.csv").exists():
             raise LiftMapError(f"'{root}' has no liftmap.csv (run the map, or its table verb, first)")
         with open(root / "liftmap.csv") as fh:
-            table = list(csv.DictReader(fh))
-        r = [float(e["r_over_R"]) for e in table]
-        f = [float(e["F_r"]) for e in table]
-        err = [float(e["F_r_spread"]) for e in table]
-        line = ax.errorbar(r, f, yerr=err, marker="o", ms=4, capsize=2, label=label or root.name)
-        colour = line[0].get_color()
-        if (root / "liftmap_zeros.csv").exists():
-            for z in csv.DictReader(open(root / "liftmap_zeros.csv")):
+            table = [{k: (v if k == "position" else float(v)) for k, v in e.items()} for e in csv.DictReader(fh)]
+        zero_rows = list(csv.DictReader(open(root / "liftmap_zeros.csv"))) if (root / "liftmap_zeros.csv").exists() else []
+        angles = [ray_angle(e) for e in table]
+        # the rays with two or more positions (a lone point beside them is for the arrows' plot)
+        rays = sorted({a for a in angles if angles.count(a) > 1}) or sorted(set(angles))
+        for angle in rays:  # a duct's map: one line per ray (wall bisector 0 deg, diagonal 45 deg)
+            ray = [e for e in table if ray_angle(e) == angle]
+            name = (label or root.name) + (f", {angle:g} deg" if len(rays) > 1 else "")
+            line = ax.errorbar([e["r_over_R"] for e in ray], [e["F_r"] for e in ray], yerr=[e["F_r_spread"] for e in ray],
+                               marker="o", ms=4, capsize=2, label=name)
+            colour = line[0].get_color()
+            for z in zero_rows:
+                if len(rays) > 1 and abs(float(z.get("ray_deg", angle)) - angle) > 1e-6:
+                    continue
                 stable = z["stable"] == "1"
                 ax.plot([float(z["r_over_R"])], [0.0], marker="o", ms=8, mec=colour, mfc=colour if stable else "w", ls="none")
     ax.axhline(0.0, color="0.6", lw=0.8)
-    ax.set_xlabel("r / R")
+    ax.set_xlabel("r / R (a duct: distance from its axis / half its width)")
     ax.set_ylabel("F_r / (rho U_b^2 D^2)")
     ax.legend(fontsize=8)
     fig.tight_layout()

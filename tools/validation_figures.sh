@@ -3,7 +3,9 @@
 # in one command (each figure is drawn from the runs that exist; a missing set is skipped):
 #   bash tools/validation_figures.sh [RUNS_ROOT=runs] [FIGURES=docs/figures]
 #   RUNS_ROOT/liftmap_re{100,200,400}            -> liftmap_rigid_re100_200_400.png
-#   RUNS_ROOT/liftmap_duct_face, liftmap_duct_diag -> liftmap_rigid_duct_re100.png
+#   RUNS_ROOT/liftmap_duct_re100_n{8,12,16}      -> liftmap_rigid_duct_re100.png (F along the wall
+#                                                 bisector and the diagonal), and from n8
+#                                                 liftmap_rigid_duct_re100_arrows.png (F over the cross-section)
 #   RUNS_ROOT/release_re{100,400}_r*             -> rigid_releases.png
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -19,10 +21,15 @@ if [ ${#maps[@]} -gt 0 ]; then
   $py "$root/tools/eulerfsi_liftmap.py" compare "${maps[@]}" --out "$figures/liftmap_rigid_re100_200_400.png"
 fi
 duct=()
-[ -f "$runs/liftmap_duct_face/liftmap.csv" ] && duct+=("$runs/liftmap_duct_face:wall bisector (y, 0)")
-[ -f "$runs/liftmap_duct_diag/liftmap.csv" ] && duct+=("$runs/liftmap_duct_diag:diagonal (s, s)")
+for n in 8 12 16; do
+  [ -f "$runs/liftmap_duct_re100_n$n/liftmap.csv" ] && duct+=("$runs/liftmap_duct_re100_n$n:$n cells per d")
+done
 if [ ${#duct[@]} -gt 0 ]; then
   $py "$root/tools/eulerfsi_liftmap.py" compare "${duct[@]}" --out "$figures/liftmap_rigid_duct_re100.png"
+fi
+if [ -f "$runs/liftmap_duct_re100_n8/liftmap.csv" ]; then
+  $py "$root/tools/eulerfsi_liftmap.py" table "$runs/liftmap_duct_re100_n8" > /dev/null
+  cp "$runs/liftmap_duct_re100_n8/liftmap.png" "$figures/liftmap_rigid_duct_re100_arrows.png"
 fi
 releases=()
 for d in "$runs"/release_re*_r*; do [ -f "$d/particle.csv" ] && releases+=("$d"); done
