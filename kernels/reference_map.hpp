@@ -447,13 +447,14 @@ inline void extrapolation_sweep(const Vector3& q, const WindowField& level, cons
 }
 
 // The surface ramp's solid cells (surface_weight < 1) blend their carried map with the fit through
-// the solid around them,  q <- w q + (1 - w) q_fit,  so a cell's q reaches the extension's value
-// as it leaves the solid. The fits read the carried values, as the extrapolation sweeps do: first
-// surface_fits (before the sweeps) writes w q + (1 - w) q_fit to `out`, then store_surface_blend
-// (after them) moves it into q; at w = 0 the cell then holds what the first sweep gives it once
-// it has left.
+// the solid around them,  q <- q + rate (1 - w) (q_fit - q)  (rate 1: q <- w q + (1 - w) q_fit, so a
+// cell's q reaches the extension's value as it leaves the solid; rate = dt / solid.map_relax_time
+// < 1 relaxes it over that time instead). The fits read the carried values, as the extrapolation
+// sweeps do: first surface_fits (before the sweeps) writes the blend to `out`, then
+// store_surface_blend (after them) moves it into q; at w = 0 and rate 1 the cell then holds what
+// the first sweep gives it once it has left.
 inline void surface_fits(const Vector3& q, const WindowField& level, const WindowField& weight, const Vector3& out,
-                         const Box& box) {
+                         const Box& box, double rate = 1.0) {
   if (!same_window(q, level) || !same_window(weight, level))
     throw std::logic_error("surface_fits: q, its level and weight are on different windows");
   const ExtrapolationSweep solid{q, level, weight, kLevelSolid};
@@ -463,7 +464,8 @@ inline void surface_fits(const Vector3& q, const WindowField& level, const Windo
     if (solid.level(i, j, k) != kLevelSolid || w >= 1.0) return;
     double fitted[3];
     solid.fit_value(i, j, k, fitted);
-    for (int d = 0; d < 3; ++d) o.c[d](i, j, k) = w * solid.q.c[d](i, j, k) + (1.0 - w) * fitted[d];
+    const double b = rate * (1.0 - w), a = rate == 1.0 ? w : 1.0 - b;  // rate 1: w q + (1 - w) q_fit exactly
+    for (int d = 0; d < 3; ++d) o.c[d](i, j, k) = a * solid.q.c[d](i, j, k) + b * fitted[d];
   });
 }
 

@@ -267,12 +267,13 @@ def compare(pairs, out):
         angles = [ray_angle(e) for e in table]
         # the rays with two or more positions (a lone point beside them is for the arrows' plot)
         rays = sorted({a for a in angles if angles.count(a) > 1}) or sorted(set(angles))
-        for angle in rays:  # a duct's map: one line per ray (wall bisector 0 deg, diagonal 45 deg)
+        palette = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+        colour = palette[pairs.index(spec) % len(palette)]  # one colour per map, one line style per ray
+        for n, angle in enumerate(rays):  # a duct's map: the wall bisector (0 deg), the diagonal (45 deg)
             ray = [e for e in table if ray_angle(e) == angle]
             name = (label or root.name) + (f", {angle:g} deg" if len(rays) > 1 else "")
-            line = ax.errorbar([e["r_over_R"] for e in ray], [e["F_r"] for e in ray], yerr=[e["F_r_spread"] for e in ray],
-                               marker="o", ms=4, capsize=2, label=name)
-            colour = line[0].get_color()
+            ax.errorbar([e["r_over_R"] for e in ray], [e["F_r"] for e in ray], yerr=[e["F_r_spread"] for e in ray],
+                        marker="os^v"[n % 4], ms=4, capsize=2, color=colour, ls=["-", "--", ":", "-."][n % 4], label=name)
             for z in zero_rows:
                 if len(rays) > 1 and abs(float(z.get("ray_deg", angle)) - angle) > 1e-6:
                     continue

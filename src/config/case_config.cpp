@@ -34,7 +34,7 @@ const std::vector<Section>& schema() {
       {"time", {"cfl", "dt", "t_end", "max_steps", "implicit_viscosity"}},
       {"solver", {"fft_planning", "reproject_constrained"}},
       {"output", {"dir", "every", "fields_every", "profiles_every", "checkpoint_every", "shape_times"}},
-      {"solid", {"shape", "diameter", "center", "thickness", "We", "viscosity_ratio", "initial_velocity", "sharpening", "model", "map_margin", "map_ramp", "b_extension", "constraint"}},
+      {"solid", {"shape", "diameter", "center", "thickness", "We", "viscosity_ratio", "initial_velocity", "sharpening", "model", "map_margin", "map_ramp", "map_relax_time", "b_extension", "constraint"}},
   };
   return s;
 }
@@ -623,6 +623,14 @@ void read_solids(const Reader& r, const toml::table& root, const DomainConfig& d
     if (c.model != SolidModelKind::ReferenceMap && t->get("map_ramp"))
       r.fail(s + ".map_ramp", s + ".map_ramp = " + fmt_double(c.map_ramp) + ": applies to " + s +
                                   ".model = \"reference-map\" only (remove it)");
+    r.get(t, s, "map_relax_time", c.map_relax_time);
+    r.require(c.map_relax_time >= 0, t, s, "map_relax_time",
+              "must be >= 0 (the time over which the surface ramp's cells relax towards the extension's fit; "
+              "0 = at once, every substep)");
+    if (c.map_relax_time > 0 && (c.model != SolidModelKind::ReferenceMap || !(c.map_ramp > 0)))
+      r.fail(s + ".map_relax_time", s + ".map_relax_time = " + fmt_double(c.map_relax_time) + ": relaxes the cells of " +
+                                        s + ".map_ramp, so it needs model = \"reference-map\" and map_ramp > 0 "
+                                        "(set map_ramp, or remove it)");
     r.get(t, s, "b_extension", c.b_extension);
     // the reference map derives B from xi everywhere it is known: there is no transported B to extend
     if (c.model == SolidModelKind::ReferenceMap && !c.b_extension)
@@ -820,7 +828,9 @@ std::string to_toml(const CaseConfig& c) {
        << "sharpening = " << fmt_double(s.sharpening) << "\n"
        << "model = " << toml_str(to_string(s.model)) << "\n"
        << "map_margin = " << fmt_double(s.map_margin) << "\n";
-    if (s.model == SolidModelKind::ReferenceMap) os << "map_ramp = " << fmt_double(s.map_ramp) << "\n";
+    if (s.model == SolidModelKind::ReferenceMap)
+      os << "map_ramp = " << fmt_double(s.map_ramp) << "\n"
+         << "map_relax_time = " << fmt_double(s.map_relax_time) << "\n";
     os << "b_extension = " << (s.b_extension ? "true" : "false") << "\n"
        << "constraint = " << toml_str(to_string(s.constraint)) << "\n";
   }

@@ -96,6 +96,7 @@ struct SolidConfig {
   double sharpening = 0.0;       // interface sharpening pseudo-step per time step, in units of h (0: off)
   double map_margin = 0.0;       // reference map: carried only deeper than this many cells inside the surface
   double map_ramp = 0.0;        // reference map: a solid cell's weight in the extension rises over this many cells
+  double map_relax_time = 0.0;  // reference map: the ramp's cells relax towards the fit over this time (0: at once)
   bool b_extension = true;       // paper model: B extended from the solid over a band, I beyond (false: the paper's B)
   InitialSolidVelocity initial_velocity = InitialSolidVelocity::Fluid;
   SolidModelKind model = SolidModelKind::Paper;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
 #include <utility>
 
@@ -182,6 +183,7 @@ double ReferenceMapModel::solid_margin() const {
 
 void ReferenceMapModel::advance_substep(SolidBody& body, const kernels::Velocity& vel, double dt, int substep) {
   const Box box = active_, support = intersection(box, psi_box());
+  substep_dt_ = dt * Rk3::alpha(substep);  // the substep's share of the step
   if (substep == 0) {  // psi and its step-start copy move with one window: the same extents
     Kokkos::deep_copy(psi_step_start_.data, body.psi.data);
     step_inv_dt_ = 1.0 / dt;
@@ -227,7 +229,10 @@ void ReferenceMapModel::blend_fits(const Box& region) {
   blend_box_ = Box{};
   if (cfg_solid_.map_ramp <= 0.0) return;
   blend_box_ = intersection(region, psi_box());
-  if (!blend_box_.empty()) kernels::surface_fits(q_, level_, weight_, rhs_, blend_box_);
+  // the fraction of the way to the fit a ramp cell goes this substep: all of it, or dt / relax_time
+  const double tau = cfg_solid_.map_relax_time;
+  const double rate = tau > 0.0 ? std::min(1.0, substep_dt_ / tau) : 1.0;
+  if (!blend_box_.empty()) kernels::surface_fits(q_, level_, weight_, rhs_, blend_box_, rate);
 }
 
 void ReferenceMapModel::store_blend(const Box& region) {

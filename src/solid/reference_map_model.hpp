@@ -90,6 +90,7 @@ class ReferenceMapModel final : public SolidModel {
   // psi at the start of the last step and 1 / its dt (0 before a step): the radial-momentum
   // budget's dpsi/dt (psi is derived, not transported by the solver's fluxes)
   WindowField psi_step_start_;
+  double substep_dt_ = 0.0;
   double step_inv_dt_ = 0.0;
   // The owned cells within reach of the body: the bounding box of the known cells (ghosts
   // included, so a body about to cross into this rank's slab is seen) grown by two cells. Every

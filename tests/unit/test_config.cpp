@@ -489,6 +489,12 @@ TEST(ConfigErrors, MapMarginBelongsToTheReferenceMap) {
                {"solid[0].b_extension = false", "\"paper\" only"});
   expect_error("[[solid]]\nb_extension = 1\n", {"solid[0].b_extension"});
   expect_error("[[solid]]\nmodel = \"reference-map\"\nmap_margin = -0.1\n", {"solid[0].map_margin = -0.1", "[0, 1]"});
+  // the relaxation acts on the ramp's cells: refused without a ramp, for other models, below 0
+  expect_error("[[solid]]\nmodel = \"reference-map\"\nmap_relax_time = 0.05\n",
+               {"solid[0].map_relax_time = 0.05", "map_ramp > 0"});
+  expect_error("[[solid]]\nmodel = \"paper\"\nmap_relax_time = 0.05\n", {"solid[0].map_relax_time", "\"reference-map\""});
+  expect_error("[[solid]]\nmodel = \"reference-map\"\nmap_ramp = 0.5\nmap_relax_time = -1\n",
+               {"solid[0].map_relax_time = -1", ">= 0"});
 }
 
 // solver.fft_planning: estimate by default, measure on request, written back by the round trip;

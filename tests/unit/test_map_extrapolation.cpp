@@ -63,10 +63,10 @@ struct Map {
       kernels::extrapolation_sweep(q, level, weight, s, kInterior, defer && s == kLastSweep);
   }
   // the sweeps with the surface ramp's blend around them, as the model runs them
-  void blend_and_extrapolate() const {
+  void blend_and_extrapolate(double rate = 1.0) const {
     kernels::Vector3 out;
     for (int a = 0; a < 3; ++a) out.c[a] = WindowField(Field3("blend", kN, kN, kN));
-    kernels::surface_fits(q, level, weight, out, kInterior);
+    kernels::surface_fits(q, level, weight, out, kInterior, rate);
     extrapolate(false);
     kernels::store_surface_blend(q, level, weight, out, kInterior);
   }
@@ -193,6 +193,32 @@ TEST(MapExtrapolation, ACellLeavingTheSolidChangesTheExtensionContinuously) {
   }
   EXPECT_GT(jump[0], 1e-3) << "without the ramp the extension jumps by a fraction of the drift";
   EXPECT_LT(jump[1], 1e-8);
+}
+
+// solid.map_relax_time: a ramp cell goes the fraction rate (1 - w) of the way from its carried q to
+// the fit each substep (rate = dt / relax_time), so its distance from the fit shrinks by exactly
+// 1 - rate (1 - w); rate 1 is the full blend bit for bit. A deformed map (the fit is not exact).
+TEST(MapExtrapolation, RampCellsRelaxTowardsTheFitAtTheGivenRate) {
+  const double rate = 0.3;
+  const Map full(true, 1.0), relaxed(true, 1.0), before(true, 1.0);
+  full.blend_and_extrapolate(1.0);
+  relaxed.blend_and_extrapolate(rate);
+  const HostCells level = on_host(before.level), weight = on_host(before.weight);
+  int ramp_cells = 0;
+  for (int a = 0; a < 3; ++a) {
+    const HostCells q0 = on_host(before.q.c[a]), qf = on_host(full.q.c[a]), qr = on_host(relaxed.q.c[a]);
+    for (int i = 0; i < kN; ++i)
+      for (int j = 0; j < kN; ++j)
+        for (int k = 0; k < kN; ++k) {
+          const double w = weight(i, j, k);
+          if (level(i, j, k) != kernels::kLevelSolid || w >= 1.0) continue;
+          ++ramp_cells;
+          // the fit, from the full blend: qf = w q0 + (1 - w) fit
+          const double fit = (qf(i, j, k) - w * q0(i, j, k)) / (1.0 - w);
+          EXPECT_NEAR(qr(i, j, k) - fit, (1.0 - rate * (1.0 - w)) * (q0(i, j, k) - fit), 1e-12);
+        }
+  }
+  EXPECT_GT(ramp_cells, 30);
 }
 
 // The last sweep fits at once only the cells with a known face neighbour (the central differences
