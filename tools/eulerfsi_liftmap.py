@@ -106,6 +106,11 @@ def read_positions(root):
         return [(row["position"], float(row["y"]), float(row["z"])) for row in csv.DictReader(f)]
 
 
+def finished_positions(root, failed=()):
+    """The folder's positions whose run has written a particle.csv, less those that failed."""
+    return [e for e in read_positions(root) if e[0] not in failed and (root / e[0] / "particle.csv").exists()]
+
+
 def read_rows(path):
     with open(path) as f:
         return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
@@ -193,13 +198,6 @@ def zeros_by_ray(table):
     return out
 
 
-def on_one_ray(entries):
-    """True when every position lies on one ray from the axis (a pipe's radii): F_r against r/R is
-    then the plot; otherwise the arrows (F_y, F_z) over the cross-section."""
-    dirs = [(y / math.hypot(y, z), z / math.hypot(y, z)) for _, y, z in entries if math.hypot(y, z) > 0]
-    return all(abs(a[0] - dirs[0][0]) < 1e-9 and abs(a[1] - dirs[0][1]) < 1e-9 for a in dirs)
-
-
 def write_table(case, root, entries, average_from):
     table = [summarise(case, root / name, y, z, average_from) for name, y, z in entries]
     table.sort(key=lambda e: (ray_angle(e), e["r_over_R"]))
@@ -216,7 +214,9 @@ def write_table(case, root, entries, average_from):
     for angle, r, y, z, stable in found:
         print(f"equilibrium r/R = {r:.4f} at ({y:.4f}, {z:.4f}), ray {angle:g} deg "
               f"({'stable' if stable else 'unstable'} along it)")
-    plot(table, found, root / "liftmap.png", on_one_ray(entries))
+    # one ray (a pipe's radii): F_r against r/R; otherwise the arrows (F_y, F_z) over the cross-section
+    one_ray = len({ray_angle(e) for e in table if math.hypot(e["y"], e["z"]) > 0}) <= 1
+    plot(table, found, root / "liftmap.png", one_ray)
     return table, found
 
 
@@ -346,7 +346,7 @@ def main(argv=None):
                     print(f"{futures[fut]}: exit {rc}", flush=True)
                     if rc != 0:
                         failed.append(futures[fut])
-            done = [e for e in read_positions(root) if e[0] not in failed and (root / e[0] / "particle.csv").exists()]
+            done = finished_positions(root, failed)
             if done:
                 write_table(case, root, done, args.average_from)
             if failed:
@@ -357,8 +357,7 @@ def main(argv=None):
         if not (root / "liftmap_positions.csv").exists():
             raise LiftMapError(f"'{root}' is not a lift map's folder (no liftmap_positions.csv)")
         case = read_case(root / "liftmap_case.toml")
-        entries = read_positions(root)
-        entries = [e for e in entries if (root / e[0] / "particle.csv").exists()]
+        entries = finished_positions(root)
         if not entries:
             raise LiftMapError(f"no position in '{root}' has a particle.csv yet")
         write_table(case, root, entries, args.average_from)

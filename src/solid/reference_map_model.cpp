@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <stdexcept>
 #include <utility>
 
@@ -183,7 +182,6 @@ double ReferenceMapModel::solid_margin() const {
 
 void ReferenceMapModel::advance_substep(SolidBody& body, const kernels::Velocity& vel, double dt, int substep) {
   const Box box = active_, support = intersection(box, psi_box());
-  substep_dt_ = dt * Rk3::alpha(substep);  // the substep's share of the step
   if (substep == 0) {  // psi and its step-start copy move with one window: the same extents
     Kokkos::deep_copy(psi_step_start_.data, body.psi.data);
     step_inv_dt_ = 1.0 / dt;
@@ -195,7 +193,7 @@ void ReferenceMapModel::advance_substep(SolidBody& body, const kernels::Velocity
   fill_map_ghosts(box);
   // the body where it is now, then q outside it again from the body's own values
   classify(box, false);
-  blend_fits(box);
+  blend_fits(box, dt * Rk3::alpha(substep));  // the substep's share of the step
   extrapolate(box);
   store_blend(box);
   // B before the substep becomes B_prev by a swap (no copy; ghosts included): derive_solid writes
@@ -225,13 +223,13 @@ void ReferenceMapModel::classify(const Box& region, bool initial) {
 // The surface ramp's cells take part of the fit through the solid (kernels::surface_fits), read
 // from the carried values as the sweeps read them, and stored after the sweeps; rhs_ holds them in
 // between (free from the update to the next substep's rhs).
-void ReferenceMapModel::blend_fits(const Box& region) {
+void ReferenceMapModel::blend_fits(const Box& region, double substep_dt) {
   blend_box_ = Box{};
   if (cfg_solid_.map_ramp <= 0.0) return;
   blend_box_ = intersection(region, psi_box());
   // the fraction of the way to the fit a ramp cell goes this substep: all of it, or dt / relax_time
   const double tau = cfg_solid_.map_relax_time;
-  const double rate = tau > 0.0 ? std::min(1.0, substep_dt_ / tau) : 1.0;
+  const double rate = tau > 0.0 ? std::min(1.0, substep_dt / tau) : 1.0;
   if (!blend_box_.empty()) kernels::surface_fits(q_, level_, weight_, rhs_, blend_box_, rate);
 }
 

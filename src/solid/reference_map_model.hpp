@@ -64,7 +64,7 @@ class ReferenceMapModel final : public SolidModel {
   double solid_margin() const;
   double surface_ramp() const;
   void classify(const Box& region, bool initial);
-  void blend_fits(const Box& region);
+  void blend_fits(const Box& region, double substep_dt);  // substep_dt: sets the relaxation's rate
   void store_blend(const Box& region);
   void derive_solid(SolidBody& body, const Box& region);
   void update_active_box(SolidBody& body);
@@ -90,7 +90,6 @@ class ReferenceMapModel final : public SolidModel {
   // psi at the start of the last step and 1 / its dt (0 before a step): the radial-momentum
   // budget's dpsi/dt (psi is derived, not transported by the solver's fluxes)
   WindowField psi_step_start_;
-  double substep_dt_ = 0.0;
   double step_inv_dt_ = 0.0;
   // The owned cells within reach of the body: the bounding box of the known cells (ghosts
   // included, so a body about to cross into this rank's slab is seen) grown by two cells. Every
