@@ -5,7 +5,7 @@
                           [--out-root runs/liftmap] [--set k=v ...] [--average-from 0.5]
   eulerfsi_liftmap.py run CASE --points y1:z1,y2:z2,... [...]        (a duct: positions in y, z)
   eulerfsi_liftmap.py table OUT_ROOT [--average-from 0.5]
-  eulerfsi_liftmap.py compare OUT_ROOT:LABEL [OUT_ROOT:LABEL ...] --out FIGURE.png
+  eulerfsi_liftmap.py compare OUT_ROOT:LABEL [OUT_ROOT:LABEL ...] --out FIGURE.png [--lift-coefficient]
 
 CASE holds one [[solid]] (solid[0]); each position runs as
   [mpirun -np NP] BINARY run CASE --out OUT_ROOT/<position> --set solid[0].model=MODEL
@@ -26,7 +26,8 @@ zeros of F_r by linear interpolation and their stability along the ray from the 
 stable), written to liftmap_zeros.csv (r/R, stable, the ray's angle from +y in degrees, y, z);
 stability across a ray is read from a position beside it (the duct's plot draws F_y, F_z arrows).
 `compare` draws the F_r of several finished maps (their liftmap.csv, liftmap_zeros.csv) on one
-figure, each with its label (e.g. "Re = 100, 8 cells per d"), the zeros marked (filled: stable).
+figure, each with its label (e.g. "Re = 100, 8 cells per d"), the zeros marked (filled: stable);
+--lift-coefficient divides each map's F_r by (d/D)^4, so that spheres of different size compare.
 Exit code: 0 done, 1 a run failed, 2 a usage error.
 """
 import argparse
@@ -250,8 +251,19 @@ def plot(table, found, path, radial):
     plt.close(fig)
 
 
-def compare(pairs, out):
-    """F_r against r/R of several maps on one figure."""
+def diameter_ratio(root):
+    """d / D (D = Ly) of a map's sphere, from a position's resolved configuration where there is one
+    (it holds the --set values), else from the map's case."""
+    resolved = sorted(root.glob("*/config.resolved.toml"))
+    source = resolved[0] if resolved else root / "liftmap_case.toml"
+    with open(source, "rb") as f:
+        case = tomllib.load(f)
+    return case["solid"][0]["diameter"] / case.get("domain", {}).get("length", [3.0, 1.0, 1.0])[1]
+
+
+def compare(pairs, out, lift_coefficient=False):
+    """F_r against r/R of several maps on one figure; with lift_coefficient, F_r / (d/D)^4, the
+    lift coefficient of F = C_L rho U_b^2 d^4 / D^2, so that spheres of different size compare."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -267,12 +279,18 @@ def compare(pairs, out):
         angles = [ray_angle(e) for e in table]
         # the rays with two or more positions (a lone point beside them is for the arrows' plot)
         rays = sorted({a for a in angles if angles.count(a) > 1}) or sorted(set(angles))
+        scale = 1.0
+        if lift_coefficient:
+            ratio = diameter_ratio(root)
+            scale = ratio ** -4
+            print(f"{label or root.name}: F_r / (d/D)^4, d/D = {ratio:g}")
         palette = plt.rcParams["axes.prop_cycle"].by_key()["color"]
         colour = palette[pairs.index(spec) % len(palette)]  # one colour per map, one line style per ray
         for n, angle in enumerate(rays):  # a duct's map: the wall bisector (0 deg), the diagonal (45 deg)
             ray = [e for e in table if ray_angle(e) == angle]
             name = (label or root.name) + (f", {angle:g} deg" if len(rays) > 1 else "")
-            ax.errorbar([e["r_over_R"] for e in ray], [e["F_r"] for e in ray], yerr=[e["F_r_spread"] for e in ray],
+            ax.errorbar([e["r_over_R"] for e in ray], [scale * e["F_r"] for e in ray],
+                        yerr=[scale * e["F_r_spread"] for e in ray],
                         marker="os^v"[n % 4], ms=4, capsize=2, color=colour, ls=["-", "--", ":", "-."][n % 4], label=name)
             for z in zero_rows:
                 if len(rays) > 1 and abs(float(z.get("ray_deg", angle)) - angle) > 1e-6:
@@ -281,7 +299,7 @@ def compare(pairs, out):
                 ax.plot([float(z["r_over_R"])], [0.0], marker="o", ms=8, mec=colour, mfc=colour if stable else "w", ls="none")
     ax.axhline(0.0, color="0.6", lw=0.8)
     ax.set_xlabel("r / R (a duct: distance from its axis / half its width)")
-    ax.set_ylabel("F_r / (rho U_b^2 D^2)")
+    ax.set_ylabel("C_L = F_r D^2 / (rho U_b^2 d^4)" if lift_coefficient else "F_r / (rho U_b^2 D^2)")
     ax.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(out, dpi=120)
@@ -307,6 +325,8 @@ def main(argv=None):
     c = sub.add_parser("compare", help="several finished maps on one figure")
     c.add_argument("maps", nargs="+", metavar="OUT_ROOT:LABEL")
     c.add_argument("--out", required=True)
+    c.add_argument("--lift-coefficient", action="store_true",
+                   help="plot F_r / (d/D)^4 (d/D from each map's runs), to compare spheres of different size")
     t = sub.add_parser("table", help="the table and plot of finished (or running) positions")
     t.add_argument("out_root")
     t.add_argument("--average-from", type=float, default=0.5)
@@ -315,7 +335,7 @@ def main(argv=None):
         p.error(f"--average-from {args.average_from}: a fraction of the run's last time, in [0, 1) (0.5: the second half)")
     try:
         if args.verb == "compare":
-            compare(args.maps, args.out)
+            compare(args.maps, args.out, args.lift_coefficient)
             return 0
         if args.verb == "run":
             case = read_case(args.case)

@@ -99,6 +99,13 @@ PY
 /usr/bin/python3 "$root/tools/eulerfsi_liftmap.py" compare "$work/map:pipe" "$work/diag:diagonal" \
   --out "$work/compare.png" > /dev/null || fail "compare failed"
 [ -s "$work/compare.png" ] || fail "compare wrote no figure"
+# the lift coefficient takes d/D from a position's resolved configuration (a --set diameter), else the case
+first=$(tail -n +2 "$work/diag/liftmap_positions.csv" | head -1 | cut -d, -f1)
+printf '[domain]\nlength = [1.0, 1.0, 1.0]\n[[solid]]\ndiameter = 0.1\n' > "$work/diag/$first/config.resolved.toml"
+/usr/bin/python3 "$root/tools/eulerfsi_liftmap.py" compare "$work/map:pipe" "$work/diag:duct" --lift-coefficient \
+  --out "$work/cl.png" > "$work/cl.txt" || fail "compare --lift-coefficient failed"
+grep -q "pipe: .*d/D = 0.2$" "$work/cl.txt" && grep -q "duct: .*d/D = 0.1$" "$work/cl.txt" ||
+  fail "the lift coefficient's d/D: $(cat "$work/cl.txt")"
 rc=0
 /usr/bin/python3 "$root/tools/eulerfsi_liftmap.py" compare "$work/none:x" --out "$work/x.png" 2> /dev/null || rc=$?
 [ "$rc" = 2 ] || fail "compare of a missing map gave exit $rc"
