@@ -255,9 +255,7 @@ def diameter_ratio(root):
     """d / D (D = Ly) of a map's sphere, from a position's resolved configuration where there is one
     (it holds the --set values), else from the map's case."""
     resolved = sorted(root.glob("*/config.resolved.toml"))
-    source = resolved[0] if resolved else root / "liftmap_case.toml"
-    with open(source, "rb") as f:
-        case = tomllib.load(f)
+    case = read_case(resolved[0] if resolved else root / "liftmap_case.toml")
     return case["solid"][0]["diameter"] / case.get("domain", {}).get("length", [3.0, 1.0, 1.0])[1]
 
 
