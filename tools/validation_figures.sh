@@ -6,6 +6,9 @@
 #   RUNS_ROOT/liftmap_duct_re100_n{8,12,16}      -> liftmap_rigid_duct_re100.png (F along the wall
 #                                                 bisector and the diagonal), and from n8
 #                                                 liftmap_rigid_duct_re100_arrows.png (F over the cross-section)
+#   RUNS_ROOT/liftmap_duct_re{20,100,200}_n8 and liftmap_duct_d01_re100_n8
+#                                             -> liftmap_rigid_duct_re20_100_200.png (F / (d/H)^4)
+#   RUNS_ROOT/liftmap_re100 and liftmap_d015_re100 -> liftmap_rigid_pipe_d015_d02.png (F / (d/D)^4)
 #   RUNS_ROOT/release_re{100,400}_r*             -> rigid_releases.png
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -31,6 +34,19 @@ if [ -f "$runs/liftmap_duct_re100_n8/liftmap.csv" ]; then
   $py "$root/tools/eulerfsi_liftmap.py" table "$runs/liftmap_duct_re100_n8" > /dev/null
   cp "$runs/liftmap_duct_re100_n8/liftmap.png" "$figures/liftmap_rigid_duct_re100_arrows.png"
 fi
+# maps of different sizes on one axis: the lift coefficient F / (d/D)^4
+coefficient_figure() {
+  local out=$1; shift
+  local sets=() spec
+  for spec in "$@"; do [ -f "$runs/${spec%%:*}/liftmap.csv" ] && sets+=("$runs/$spec"); done
+  if [ ${#sets[@]} -gt 0 ]; then
+    $py "$root/tools/eulerfsi_liftmap.py" compare "${sets[@]}" --lift-coefficient --out "$figures/$out"
+  fi
+}
+coefficient_figure liftmap_rigid_duct_re20_100_200.png "liftmap_duct_re20_n8:d/H = 0.2, Re = 20" \
+  "liftmap_duct_re100_n8:d/H = 0.2, Re = 100" "liftmap_duct_re200_n8:d/H = 0.2, Re = 200" \
+  "liftmap_duct_d01_re100_n8:d/H = 0.1, Re = 100"
+coefficient_figure liftmap_rigid_pipe_d015_d02.png "liftmap_re100:d/D = 0.2" "liftmap_d015_re100:d/D = 0.15"
 releases=()
 for d in "$runs"/release_re*_r*; do [ -f "$d/particle.csv" ] && releases+=("$d"); done
 if [ ${#releases[@]} -gt 0 ]; then
