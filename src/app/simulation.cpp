@@ -10,6 +10,7 @@
 
 #include "app/fault_check.hpp"
 #include "app/restart.hpp"
+#include "app/runaway.hpp"
 #include "app/signals.hpp"
 #include "io/checkpoint.hpp"
 #include "io/csv_writer.hpp"
@@ -329,12 +330,17 @@ class Simulation {
     fields_.write(step_, t_, out, true, flow_.frame_offset());
   }
 
-  // Non-finite values, a CFL number the step cannot keep below 1, or an adaptive step collapsing
-  // to a millionth of the run's first one (velocities growing without bound): the run has blown up.
+  // Non-finite values, a CFL number the step cannot keep below 1, an adaptive step collapsing
+  // to a millionth of the run's first one, or a speed a hundred times the case's scale (velocities
+  // growing without bound): the run has blown up.
   bool blown_up(double dt, double dt_stable) {
-    if (dt_reference_ == 0.0) dt_reference_ = dt_stable;
+    if (dt_reference_ == 0.0) {
+      dt_reference_ = dt_stable;
+      speed_scale_ = case_speed_scale(cfg_, flow_.last_speed_bound());
+    }
     const double cfl = cfg_.time.cfl * dt / dt_stable;
-    return !(std::isfinite(dt_stable) && dt_stable > kCollapse * dt_reference_ && cfl <= kBlowUpCfl);
+    return !(std::isfinite(dt_stable) && dt_stable > kCollapse * dt_reference_ && cfl <= kBlowUpCfl) ||
+           speed_ran_away(flow_.last_speed_bound(), speed_scale_);
   }
 
   int report_blow_up(double dt, double dt_stable) {
@@ -348,6 +354,13 @@ class Simulation {
       char buf[200];
       std::snprintf(buf, sizeof(buf), "the stable time step collapsed to %.3g (%.1e of the first step %.3g): the velocity "
                     "is growing without bound", dt_stable, dt_stable / dt_reference_, dt_reference_);
+      where = buf;
+    }
+    if (where.empty() && speed_ran_away(flow_.last_speed_bound(), speed_scale_)) {
+      char buf[240];
+      std::snprintf(buf, sizeof(buf), "the largest speed is at least %.3g, over %.0f times the case's speed scale %.3g "
+                    "(bulk, wall and starting speeds): the velocity is growing without bound",
+                    flow_.last_speed_bound(), kRunawaySpeedFactor, speed_scale_);
       where = buf;
     }
     if (where.empty()) {
@@ -417,6 +430,7 @@ class Simulation {
   Field3 psi_total_, centred_[3], energy_;  // field snapshots
   size_t next_shape_ = 0;
   double dt_reference_ = 0.0;  // the first stable step of this process (since the start or restart)
+  double speed_scale_ = 0.0;   // case_speed_scale at that step
   double t_ = 0.0;
   long step_ = 0;
 };

@@ -174,6 +174,7 @@ double FlowSolver::stable_dt(double extra_wave_speed) const {
   const auto& u = state_.vel.c;
   const double rate = comm_.max(kernels::max_signal_rate(u[0], u[1], u[2], grid_.h, extra_wave_speed, grid_.interior()));
   const double dt_conv = rate > 0.0 ? cfg_.time.cfl / rate : 1e300;
+  last_speed_bound_ = std::max(0.0, rate * std::min(grid_.h[0], std::min(grid_.h[1], grid_.h[2])) - extra_wave_speed);
   // RK3 is stable on the negative real axis to 2.51; 1.65 keeps a margin (as CaNS does)
   double inv_h2 = 0.0;
   for (int d = 0; d < 3; ++d) inv_h2 += 1.0 / (grid_.h[d] * grid_.h[d]);

@@ -35,6 +35,9 @@ class FlowSolver {
   void make_solenoidal();
   // Largest stable step: the CFL limit on (|u| + sqrt(G)) / h and the explicit viscous limit.
   double stable_dt(double extra_wave_speed = 0.0) const;
+  // The largest speed the last stable_dt saw, at least: max (|u_d| + c) / h_d times the finest h,
+  // less c (the driver's runaway test reads it without a second reduction over the grid).
+  double last_speed_bound() const { return last_speed_bound_; }
   // One RK3 step of size dt from time t; the solids (if any) advance inside each substep.
   void advance(double t, double dt, SolidCoupling* solids = nullptr);
   FlowDiagnostics diagnostics(double dt, double wave_speed = 0.0) const;
@@ -100,6 +103,7 @@ class FlowSolver {
   bool impose_flow_rate_ = false;
   double dpdx_ = 0.0;
   double frame_u_ = 0.0, frame_x_ = 0.0;
+  mutable double last_speed_bound_ = 0.0;  // a by-product of stable_dt (see last_speed_bound)
 };
 
 }  // namespace eulerfsi
