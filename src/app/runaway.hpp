@@ -1,7 +1,7 @@
 #pragma once
 // A run whose velocity has left every scale of its case has blown up, even where its adaptive
-// step still shrinks too slowly to reach the collapse test (a soft particle torn apart by the
-// start's slip kept dt near 1e-7 for thousands of steps at kinetic energy 1e8; docs/REFERENCE_MAP.md,
+// step still shrinks too slowly to reach the collapse test (a stiff particle released at rest with
+// the surface ramp kept dt near 1e-7 for thousands of steps at kinetic energy 1e8; docs/REFERENCE_MAP.md,
 // "Ramp 0.5 with relax time 0.05 rerun").
 #include "config/case_config.hpp"
 
