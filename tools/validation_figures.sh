@@ -16,37 +16,29 @@ runs=${1:-runs}
 figures=${2:-$root/docs/figures}
 py=/usr/bin/python3
 mkdir -p "$figures"
-maps=()
-for re in 100 200 400; do
-  [ -f "$runs/liftmap_re$re/liftmap.csv" ] && maps+=("$runs/liftmap_re$re:Re = $re")
-done
-if [ ${#maps[@]} -gt 0 ]; then
-  $py "$root/tools/eulerfsi_liftmap.py" compare "${maps[@]}" --out "$figures/liftmap_rigid_re100_200_400.png"
-fi
-duct=()
-for n in 8 12 16; do
-  [ -f "$runs/liftmap_duct_re100_n$n/liftmap.csv" ] && duct+=("$runs/liftmap_duct_re100_n$n:$n cells per d")
-done
-if [ ${#duct[@]} -gt 0 ]; then
-  $py "$root/tools/eulerfsi_liftmap.py" compare "${duct[@]}" --out "$figures/liftmap_rigid_duct_re100.png"
-fi
+# One `compare` figure from the maps among FOLDER:LABEL specs that exist (none: no figure);
+# options before the specs (--lift-coefficient: maps of different sizes on one axis, F / (d/D)^4).
+compare_figure() {
+  local out=$1; shift
+  local options=() sets=() spec
+  while [ $# -gt 0 ] && [ "${1#--}" != "$1" ]; do options+=("$1"); shift; done
+  for spec in "$@"; do [ -f "$runs/${spec%%:*}/liftmap.csv" ] && sets+=("$runs/$spec"); done
+  if [ ${#sets[@]} -gt 0 ]; then
+    $py "$root/tools/eulerfsi_liftmap.py" compare "${sets[@]}" "${options[@]}" --out "$figures/$out"
+  fi
+}
+compare_figure liftmap_rigid_re100_200_400.png "liftmap_re100:Re = 100" "liftmap_re200:Re = 200" "liftmap_re400:Re = 400"
+compare_figure liftmap_rigid_duct_re100.png "liftmap_duct_re100_n8:8 cells per d" \
+  "liftmap_duct_re100_n12:12 cells per d" "liftmap_duct_re100_n16:16 cells per d"
 if [ -f "$runs/liftmap_duct_re100_n8/liftmap.csv" ]; then
   $py "$root/tools/eulerfsi_liftmap.py" table "$runs/liftmap_duct_re100_n8" > /dev/null
   cp "$runs/liftmap_duct_re100_n8/liftmap.png" "$figures/liftmap_rigid_duct_re100_arrows.png"
 fi
-# maps of different sizes on one axis: the lift coefficient F / (d/D)^4
-coefficient_figure() {
-  local out=$1; shift
-  local sets=() spec
-  for spec in "$@"; do [ -f "$runs/${spec%%:*}/liftmap.csv" ] && sets+=("$runs/$spec"); done
-  if [ ${#sets[@]} -gt 0 ]; then
-    $py "$root/tools/eulerfsi_liftmap.py" compare "${sets[@]}" --lift-coefficient --out "$figures/$out"
-  fi
-}
-coefficient_figure liftmap_rigid_duct_re20_100_200.png "liftmap_duct_re20_n8:d/H = 0.2, Re = 20" \
+compare_figure liftmap_rigid_duct_re20_100_200.png --lift-coefficient "liftmap_duct_re20_n8:d/H = 0.2, Re = 20" \
   "liftmap_duct_re100_n8:d/H = 0.2, Re = 100" "liftmap_duct_re200_n8:d/H = 0.2, Re = 200" \
   "liftmap_duct_d01_re100_n8:d/H = 0.1, Re = 100"
-coefficient_figure liftmap_rigid_pipe_d015_d02.png "liftmap_re100:d/D = 0.2" "liftmap_d015_re100:d/D = 0.15"
+compare_figure liftmap_rigid_pipe_d015_d02.png --lift-coefficient "liftmap_re100:d/D = 0.2" \
+  "liftmap_d015_re100:d/D = 0.15"
 releases=()
 for d in "$runs"/release_re*_r*; do [ -f "$d/particle.csv" ] && releases+=("$d"); done
 if [ ${#releases[@]} -gt 0 ]; then
