@@ -7,3 +7,6 @@ set_tests_properties(run_queues PROPERTIES TIMEOUT 60)
 # The lift-map tool (tools/eulerfsi_liftmap.py) with a stand-in binary whose lift is known.
 add_test(NAME liftmap_tool COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/tools/test_liftmap.sh ${CMAKE_BINARY_DIR}/liftmap_test)
 set_tests_properties(liftmap_tool PROPERTIES TIMEOUT 120)
+# The regime-map tool (tools/eulerfsi_regime.py) with a stand-in binary whose lift is known per (Re, We).
+add_test(NAME regime_tool COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/tools/test_regime.sh ${CMAKE_BINARY_DIR}/regime_test)
+set_tests_properties(regime_tool PROPERTIES TIMEOUT 120)

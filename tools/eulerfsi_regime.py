@@ -1,0 +1,244 @@
+#!/usr/bin/python3
+"""The regime map of a soft sphere in pipe flow: its equilibrium radius over (Re, We/Re).
+
+  eulerfsi_regime.py run CASE --re 10,30,100 --we-over-re 0.001,0.01,0.1 --radii 0.15,0.35,0.55,0.7
+                         [--rigid] [--binary build/eulerfsi] [--jobs 2] [--out-root runs/regime] [--set k=v ...]
+  eulerfsi_regime.py figure OUT_ROOT [--out docs/figures/regime_map.png] [--free FREE.csv] [--average-from 0.5]
+
+`run` makes one lift map (tools/eulerfsi_liftmap.py) per pair: the case's soft sphere held at each
+radius (solid.constraint = "radial", free along x and to rotate and deform) with flow.Re = Re and
+solid.We = Re x (We/Re); with --rigid also the rigid sphere's map per Re. Folders:
+OUT_ROOT/re<Re>_wr<We/Re>/ and OUT_ROOT/re<Re>_rigid/, each a lift map's folder. Every position of
+every map shares one queue, --jobs at a time (cheapest first), so the cores stay busy; a position
+with a checkpoint continues from it, so raising time.t_end and running again extends the map, and
+radii run later into the same OUT_ROOT join each map's table.
+We/Re = mu_f U_b / (G D) is the capillary-like number of the elastic particle (its deformation
+over its shear), the paper's We = rho U_b^2 / G over Re = rho U_b D / mu_f.
+
+`figure` reads each map's F_r(r) and draws (left) the stable equilibrium radius over (Re, We/Re):
+a filled marker at the outermost stable zero of F_r, a marker on 0 where F_r points inwards at
+every radius (the axis the only equilibrium), both where the axis and an off-axis radius are
+stable; (right) the radius against We/Re per Re, the rigid sphere's zero as a dashed line of the
+same colour (the stiff limit), and with --free the radii where free particles settled (stars). The table OUT_ROOT/regime.csv lists, per map, F_r at each radius,
+its spread, the zeros and whether the axis is stable (F_r < 0 at the innermost radius).
+Exit code: 0 done, 1 a run failed (the figure still draws the finished ones), 2 a usage error.
+"""
+import argparse
+import concurrent.futures
+import csv
+import importlib.util
+import os
+import sys
+from pathlib import Path
+
+_spec = importlib.util.spec_from_file_location("liftmap", Path(__file__).with_name("eulerfsi_liftmap.py"))
+liftmap = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(liftmap)
+
+
+def floats(text, name):
+    try:
+        out = [float(v) for v in text.split(",")]
+    except ValueError:
+        raise liftmap.LiftMapError(f"{name} '{text}': a comma-separated list of numbers")
+    if any(v <= 0 for v in out):
+        raise liftmap.LiftMapError(f"{name} '{text}': every value must be positive")
+    return out
+
+
+def map_name(re, wr):
+    return f"re{re:g}_rigid" if wr is None else f"re{re:g}_wr{wr:g}"
+
+
+def maps_of(args):
+    """(folder name, model, Re, We/Re or None, the --set list) of every map the run makes."""
+    out = []
+    for re in floats(args.re, "--re"):
+        if args.rigid:
+            out.append((map_name(re, None), "rigid", re, None, [f"flow.Re={re!r}"] + args.set))
+        for wr in floats(args.we_over_re, "--we-over-re"):
+            out.append((map_name(re, wr), args.model, re, wr, [f"flow.Re={re!r}", f"solid[0].We={re * wr!r}"] + args.set))
+    return out
+
+
+def run(args):
+    case = liftmap.read_case(args.case)
+    entries = liftmap.positions(case, args.radii, None)
+    root = Path(args.out_root)
+    threads = max(1, (os.cpu_count() or 1) // max(1, args.jobs))
+    jobs = []
+    for name, model, re, wr, sets in maps_of(args):
+        folder = root / name
+        folder.mkdir(parents=True, exist_ok=True)
+        (folder / "liftmap_case.toml").write_text(Path(args.case).read_text())
+        # radii added by a later run join those already there (the figure reads them all)
+        known = liftmap.read_positions(folder) if (folder / "liftmap_positions.csv").exists() else []
+        names = {e[0] for e in known}
+        with open(folder / "liftmap_positions.csv", "w") as f:
+            f.write("position,y,z\n")
+            for pos, y, z in known + [e for e in entries if e[0] not in names]:
+                f.write(f"{pos},{y!r},{z!r}\n")
+        with open(folder / "regime_map.csv", "w") as f:
+            f.write(f"Re,we_over_re,model\n{re!r},{'' if wr is None else repr(wr)},{model}\n")
+        for pos, y, z in entries:
+            out = folder / pos
+            out.mkdir(exist_ok=True)
+            cmd = liftmap.run_command(args.binary, args.case, case, out, y, z, 1, "mpirun", sets, model)
+            jobs.append((re, folder, pos, cmd))
+    # the explicit viscous step limit makes the low-Re maps the dear ones: they go last
+    jobs.sort(key=lambda j: -j[0])
+    failed = []
+    with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
+        futures = {pool.submit(liftmap.run_one, cmd, folder / f"{pos}.log", threads): (folder, pos)
+                   for _, folder, pos, cmd in jobs}
+        for fut in concurrent.futures.as_completed(futures):
+            folder, pos = futures[fut]
+            rc = fut.result()
+            print(f"{folder.name}/{pos}: exit {rc}", flush=True)
+            if rc != 0:
+                failed.append(f"{folder.name}/{pos}")
+    for name, *_ in maps_of(args):
+        folder = root / name
+        done = liftmap.finished_positions(folder, [f.split("/")[1] for f in failed if f.startswith(name + "/")])
+        if len(done) >= 2:
+            liftmap.write_table(case, folder, done, args.average_from)
+    if failed:
+        print(f"failed: {', '.join(sorted(failed))} (logs beside each position)", file=sys.stderr)
+        return 1
+    return 0
+
+
+def summarise_map(folder, average_from):
+    """Re, We/Re (None: rigid), the table by radius, the stable off-axis zeros, whether the axis is stable."""
+    with open(folder / "regime_map.csv") as f:
+        meta = next(csv.DictReader(f))
+    case = liftmap.read_case(folder / "liftmap_case.toml")
+    entries = liftmap.finished_positions(folder)
+    if len(entries) < 2:
+        return None
+    table = sorted((liftmap.summarise(case, folder / n, y, z, average_from) for n, y, z in entries),
+                   key=lambda e: e["r_over_R"])
+    zeros = liftmap.zeros(table)
+    return {"name": folder.name, "Re": float(meta["Re"]),
+            "wr": float(meta["we_over_re"]) if meta["we_over_re"] else None,
+            "table": table, "zeros": zeros, "stable": [r for r, s in zeros if s],
+            "axis_stable": table[0]["F_r"] < 0.0, "complete": len(entries) == len(liftmap.read_positions(folder))}
+
+
+def read_free(path):
+    """Free releases to draw beside the held maps: rows of Re, we_over_re, r_over_R (# comments)."""
+    try:
+        with open(path) as f:
+            rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
+        return [{"Re": float(r["Re"]), "wr": float(r["we_over_re"]), "r": float(r["r_over_R"])} for r in rows]
+    except FileNotFoundError:
+        raise liftmap.LiftMapError(f"--free '{path}' not found")
+    except (KeyError, TypeError, ValueError):
+        raise liftmap.LiftMapError(f"--free '{path}': needs the columns Re, we_over_re, r_over_R with numbers")
+
+
+def by_radius(e):
+    return "%.3f:%.3e+-%.1e" % (e["r_over_R"], e["F_r"], e["F_r_spread"])
+
+
+def figure(args):
+    root = Path(args.out_root)
+    folders = sorted(p.parent for p in root.glob("*/regime_map.csv"))
+    maps = [m for m in (summarise_map(f, args.average_from) for f in folders) if m]
+    if not maps:
+        raise liftmap.LiftMapError(f"no map in '{root}' has two finished positions yet")
+    with open(root / "regime.csv", "w") as f:
+        f.write("map,Re,we_over_re,complete,axis_stable,stable_r,unstable_r,F_r_by_radius\n")
+        for m in maps:
+            f.write(f"{m['name']},{m['Re']:g},{'' if m['wr'] is None else format(m['wr'], 'g')},{int(m['complete'])},"
+                    f"{int(m['axis_stable'])},{' '.join(f'{r:.4f}' for r in m['stable'])},"
+                    f"{' '.join(f'{r:.4f}' for r, s in m['zeros'] if not s)},"
+                    f"{' '.join(by_radius(e) for e in m['table'])}\n")
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    soft = [m for m in maps if m["wr"] is not None]
+    rigid = {m["Re"]: m for m in maps if m["wr"] is None}
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(11.0, 4.4))
+    norm = plt.Normalize(0.0, 0.8)
+    cmap = plt.get_cmap("viridis")
+    for m in soft:
+        r = max(m["stable"]) if m["stable"] else 0.0
+        mark = "o" if m["stable"] else "s"
+        ax.scatter([m["Re"]], [m["wr"]], c=[r], cmap=cmap, norm=norm, marker=mark, s=140,
+                   edgecolors="r" if m["axis_stable"] and m["stable"] else "k", linewidths=2 if m["axis_stable"] else 0.8)
+        ax.annotate(f"{r:.2f}" + ("" if m["complete"] else "?"), (m["Re"], m["wr"]), textcoords="offset points",
+                    xytext=(0, 9), ha="center", fontsize=7)
+    for re, m in rigid.items():  # the stiff limit: the rigid sphere's zero, below the soft rows
+        r = max(m["stable"]) if m["stable"] else 0.0
+        y = min(x["wr"] for x in soft) / 4 if soft else 1e-4
+        ax.scatter([re], [y], c=[r], cmap=cmap, norm=norm, marker="D", s=120, edgecolors="k")
+        ax.annotate(f"rigid {r:.2f}", (re, y), textcoords="offset points", xytext=(0, 9), ha="center", fontsize=7)
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("Re = rho U_b D / mu_f")
+    ax.set_ylabel("We / Re = mu_f U_b / (G D)")
+    ax.set_title("stable r/R (circle; square: the axis only;\nred edge: the axis stable too; diamond: rigid)", fontsize=8)
+    fig.colorbar(plt.cm.ScalarMappable(norm=norm, cmap=cmap), ax=ax, label="equilibrium r / R")
+    colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    frees = read_free(args.free) if args.free else []
+    for n, re in enumerate(sorted({m["Re"] for m in maps} | {f["Re"] for f in frees})):
+        row = sorted((m for m in soft if m["Re"] == re), key=lambda m: m["wr"])
+        c = colours[n % len(colours)]
+        if row:
+            bx.plot([m["wr"] for m in row], [max(m["stable"]) if m["stable"] else 0.0 for m in row],
+                    marker="o", color=c, label=f"Re = {re:g}, held")
+            both = [m for m in row if m["stable"] and m["axis_stable"]]  # the axis stable as well
+            bx.plot([m["wr"] for m in both], [0.0] * len(both), marker="o", mfc="w", color=c, ls="none")
+        free = [f for f in frees if f["Re"] == re]
+        if free:
+            bx.plot([f["wr"] for f in free], [f["r"] for f in free], marker="*", ms=10, color=c, ls="none",
+                    label=f"Re = {re:g}, free")
+        if re in rigid and rigid[re]["stable"]:
+            bx.axhline(max(rigid[re]["stable"]), color=c, ls="--", lw=0.9)
+    bx.set_xscale("log")
+    bx.set_xlabel("We / Re")
+    bx.set_ylabel("stable r / R (0: the axis; dashed: the rigid sphere)")
+    bx.set_title("open: the axis stable too; stars: free releases", fontsize=8)
+    bx.set_ylim(-0.02, 0.8)
+    bx.legend(fontsize=8)
+    fig.tight_layout()
+    Path(args.out).parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(args.out, dpi=120)
+    plt.close(fig)
+    print(f"wrote {args.out} and {root / 'regime.csv'} ({len(maps)} maps)")
+    return 0
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    sub = p.add_subparsers(dest="verb", required=True)
+    r = sub.add_parser("run", help="run every map of the grid of (Re, We/Re)")
+    r.add_argument("case")
+    r.add_argument("--re", required=True, help="comma-separated Reynolds numbers")
+    r.add_argument("--we-over-re", required=True, help="comma-separated We/Re")
+    r.add_argument("--radii", required=True, help="comma-separated r/R of the held sphere")
+    r.add_argument("--model", default="reference-map", choices=["reference-map", "paper"])
+    r.add_argument("--rigid", action="store_true", help="also the rigid sphere's map per Re")
+    r.add_argument("--binary", default="build/eulerfsi")
+    r.add_argument("--jobs", type=int, default=2)
+    r.add_argument("--out-root", default="runs/regime")
+    r.add_argument("--set", action="append", default=[], metavar="KEY=VALUE")
+    r.add_argument("--average-from", type=float, default=0.5)
+    f = sub.add_parser("figure", help="the regime map of the finished maps")
+    f.add_argument("out_root")
+    f.add_argument("--out", default="docs/figures/regime_map.png")
+    f.add_argument("--average-from", type=float, default=0.5)
+    f.add_argument("--free", help="CSV of free releases (Re, we_over_re, r_over_R) drawn as stars on the right")
+    args = p.parse_args(argv)
+    if not 0.0 <= args.average_from < 1.0:
+        p.error(f"--average-from {args.average_from}: a fraction of the run's last time, in [0, 1)")
+    try:
+        return run(args) if args.verb == "run" else figure(args)
+    except liftmap.LiftMapError as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())
