@@ -18,7 +18,8 @@ over its shear), the paper's We = rho U_b^2 / G over Re = rho U_b D / mu_f.
 `figure` reads each map's F_r(r) and draws (left) the stable equilibrium radius over (Re, We/Re):
 a filled marker at the outermost stable zero of F_r, a marker on 0 where F_r points inwards at
 every radius (the axis the only equilibrium), both where the axis and an off-axis radius are
-stable; (right) the radius against We/Re per Re, the rigid sphere's zero as a dashed line of the
+stable, from the positions whose run ended normally (summary.json; a blown-up run's forces are
+left out and its map marked); (right) the radius against We/Re per Re, the rigid sphere's zero as a dashed line of the
 same colour (the stiff limit), and with --free the radii where free particles settled (stars). The table OUT_ROOT/regime.csv lists, per map, F_r at each radius,
 its spread, the zeros and whether the axis is stable (F_r < 0 at the innermost radius).
 Exit code: 0 done, 1 a run failed (the figure still draws the finished ones), 2 a usage error.
@@ -108,20 +109,32 @@ def run(args):
     return 0
 
 
+def ended_normally(folder):
+    """The map's positions whose run ended normally (it wrote summary.json; a blown-up run does not)."""
+    return [e for e in liftmap.read_positions(folder) if (folder / e[0] / "summary.json").exists()]
+
+
+def blew_up(log):
+    """Whether a position's log ends in the solver's blow-up report (exit 3)."""
+    return log.exists() and "blew up" in log.read_text(errors="replace")
+
+
 def summarise_map(folder, average_from):
-    """Re, We/Re (None: rigid), the table by radius, the stable off-axis zeros, whether the axis is stable."""
+    """Re, We/Re (None: rigid), the table by radius, the stable off-axis zeros, whether the axis is
+    stable; the table only where two or more positions ended normally."""
     with open(folder / "regime_map.csv") as f:
         meta = next(csv.DictReader(f))
     case = liftmap.read_case(folder / "liftmap_case.toml")
-    entries = liftmap.finished_positions(folder)
+    entries = ended_normally(folder)
+    out = {"name": folder.name, "Re": float(meta["Re"]),
+           "wr": float(meta["we_over_re"]) if meta["we_over_re"] else None,
+           "blown_up": sum(1 for e in liftmap.read_positions(folder) if blew_up(folder / f"{e[0]}.log"))}
     if len(entries) < 2:
-        return None
+        return {**out, "table": None}
     table = sorted((liftmap.summarise(case, folder / n, y, z, average_from) for n, y, z in entries),
                    key=lambda e: e["r_over_R"])
     zeros = liftmap.zeros(table)
-    return {"name": folder.name, "Re": float(meta["Re"]),
-            "wr": float(meta["we_over_re"]) if meta["we_over_re"] else None,
-            "table": table, "zeros": zeros, "stable": [r for r, s in zeros if s],
+    return {**out, "table": table, "zeros": zeros, "stable": [r for r, s in zeros if s],
             "axis_stable": table[0]["F_r"] < 0.0, "complete": len(entries) == len(liftmap.read_positions(folder))}
 
 
@@ -144,13 +157,16 @@ def by_radius(e):
 def figure(args):
     root = Path(args.out_root)
     folders = sorted(p.parent for p in root.glob("*/regime_map.csv"))
-    maps = [m for m in (summarise_map(f, args.average_from) for f in folders) if m]
+    every = [summarise_map(f, args.average_from) for f in folders]
+    maps = [m for m in every if m["table"]]
+    failed = [m for m in every if not m["table"] and m["blown_up"] and m["wr"] is not None]
     if not maps:
-        raise liftmap.LiftMapError(f"no map in '{root}' has two finished positions yet")
+        raise liftmap.LiftMapError(f"no map in '{root}' has two positions that ended normally yet")
     with open(root / "regime.csv", "w") as f:
-        f.write("map,Re,we_over_re,complete,axis_stable,stable_r,unstable_r,F_r_by_radius\n")
+        f.write("map,Re,we_over_re,complete,blown_up,axis_stable,stable_r,unstable_r,F_r_by_radius\n")
         for m in maps:
             f.write(f"{m['name']},{m['Re']:g},{'' if m['wr'] is None else format(m['wr'], 'g')},{int(m['complete'])},"
+                    f"{m['blown_up']},"
                     f"{int(m['axis_stable'])},{' '.join(f'{r:.4f}' for r in m['stable'])},"
                     f"{' '.join(f'{r:.4f}' for r, s in m['zeros'] if not s)},"
                     f"{' '.join(by_radius(e) for e in m['table'])}\n")
@@ -169,6 +185,9 @@ def figure(args):
                    edgecolors="r" if m["axis_stable"] and m["stable"] else "k", linewidths=2 if m["axis_stable"] else 0.8)
         ax.annotate(f"{r:.2f}" + ("" if m["complete"] else "?"), (m["Re"], m["wr"]), textcoords="offset points",
                     xytext=(0, 9), ha="center", fontsize=7)
+    for m in failed:  # every position blew up: the map's limit, not a regime
+        ax.scatter([m["Re"]], [m["wr"]], marker="x", s=90, c="k")
+        ax.annotate("blew up", (m["Re"], m["wr"]), textcoords="offset points", xytext=(0, 9), ha="center", fontsize=7)
     for re, m in rigid.items():  # the stiff limit: the rigid sphere's zero, below the soft rows
         r = max(m["stable"]) if m["stable"] else 0.0
         y = min(x["wr"] for x in soft) / 4 if soft else 1e-4
@@ -178,7 +197,8 @@ def figure(args):
     ax.set_yscale("log")
     ax.set_xlabel("Re = rho U_b D / mu_f")
     ax.set_ylabel("We / Re = mu_f U_b / (G D)")
-    ax.set_title("stable r/R (circle; square: the axis only;\nred edge: the axis stable too; diamond: rigid)", fontsize=8)
+    ax.set_title("stable r/R (circle; square: the axis only; red edge: the axis stable too;\n"
+                 "diamond: rigid; ?: a position blew up or is missing; x: every position blew up)", fontsize=8)
     fig.colorbar(plt.cm.ScalarMappable(norm=norm, cmap=cmap), ax=ax, label="equilibrium r / R")
     colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     frees = read_free(args.free) if args.free else []
