@@ -19,15 +19,20 @@ over its shear), the paper's We = rho U_b^2 / G over Re = rho U_b D / mu_f.
 a filled marker at the outermost stable zero of F_r, a marker on 0 where F_r points inwards at
 every radius (the axis the only equilibrium), both where the axis and an off-axis radius are
 stable, from the positions whose run ended normally (summary.json; a blown-up run's forces are
-left out and its map marked); (right) the radius against We/Re per Re, the rigid sphere's zero as a dashed line of the
-same colour (the stiff limit), and with --free the radii where free particles settled (stars). The table OUT_ROOT/regime.csv lists, per map, F_r at each radius,
-its spread, the zeros and whether the axis is stable (F_r < 0 at the innermost radius).
+left out and its map marked); (right) the radius against We/Re per Re, the rigid sphere's zero as
+a dashed line of the same colour (the stiff limit), and with --free the radii where free
+particles settled (stars). A zero is the root of the parabola through the two radii that bracket
+it and their nearer neighbour; its error bar, the distance to the linear interpolation's root,
+is the interpolation's own uncertainty (the forces' drift is in the table). The table
+OUT_ROOT/regime.csv lists, per map, the outer stable radius and its error bar, every zero, whether
+the axis is stable (F_r < 0 at the innermost radius) and F_r with its drift at each radius.
 Exit code: 0 done, 1 a run failed (the figure still draws the finished ones), 2 a usage error.
 """
 import argparse
 import concurrent.futures
 import csv
 import importlib.util
+import math
 import os
 import sys
 from pathlib import Path
@@ -119,6 +124,45 @@ def blew_up(log):
     return log.exists() and "blew up" in log.read_text(errors="replace")
 
 
+def quadratic_zero(pts, lo, hi):
+    """The root in [lo, hi] of the parabola through three (r, F) points, or None."""
+    (x0, y0), (x1, y1), (x2, y2) = pts
+    # Newton's form: F = y0 + d1 (r - x0) + d2 (r - x0)(r - x1)
+    d1 = (y1 - y0) / (x1 - x0)
+    d2 = ((y2 - y1) / (x2 - x1) - d1) / (x2 - x0)
+    a, b, c = d2, d1 - d2 * (x0 + x1), y0 - d1 * x0 + d2 * x0 * x1
+    if abs(a) < 1e-300:
+        return -c / b if b != 0 and lo <= -c / b <= hi else None
+    disc = b * b - 4 * a * c
+    if disc < 0:
+        return None
+    roots = [(-b + sgn * math.sqrt(disc)) / (2 * a) for sgn in (1.0, -1.0)]
+    inside = [x for x in roots if lo - 1e-12 <= x <= hi + 1e-12]
+    return inside[0] if inside else None
+
+
+def zeros_with_bars(table):
+    """The zeros of F_r(r) with their stability: the parabola's root through the bracketing pair and
+    its nearer neighbour, and as its error bar the distance to the linear root (the interpolation's
+    own uncertainty; the linear root where there is no third point): [(r, stable, error)]."""
+    out = []
+    r = [e["r_over_R"] for e in table]
+    f = [e["F_r"] for e in table]
+    for i in range(len(table) - 1):
+        if not (f[i] == 0.0 or f[i] * f[i + 1] < 0.0):
+            continue
+        linear = r[i] if f[i] == 0.0 else r[i] + (r[i + 1] - r[i]) * f[i] / (f[i] - f[i + 1])
+        third = [j for j in (i - 1, i + 2) if 0 <= j < len(table)]
+        third.sort(key=lambda j: min(abs(r[j] - r[i]), abs(r[j] - r[i + 1])))
+        quad = None
+        if third:
+            pts = sorted([(r[k], f[k]) for k in (i, i + 1, third[0])])
+            quad = quadratic_zero(pts, r[i], r[i + 1])
+        best = linear if quad is None else quad
+        out.append((best, f[i + 1] < f[i], abs(best - linear)))
+    return out
+
+
 def summarise_map(folder, average_from):
     """Re, We/Re (None: rigid), the table by radius, the stable off-axis zeros, whether the axis is
     stable; the table only where two or more positions ended normally."""
@@ -133,8 +177,10 @@ def summarise_map(folder, average_from):
         return {**out, "table": None}
     table = sorted((liftmap.summarise(case, folder / n, y, z, average_from) for n, y, z in entries),
                    key=lambda e: e["r_over_R"])
-    zeros = liftmap.zeros(table)
-    return {**out, "table": table, "zeros": zeros, "stable": [r for r, s in zeros if s],
+    zeros = zeros_with_bars(table)
+    stable = [(r, e) for r, s, e in zeros if s]
+    outer = max(stable) if stable else (0.0, 0.0)
+    return {**out, "table": table, "zeros": zeros, "stable": [r for r, _ in stable], "r": outer[0], "r_err": outer[1],
             "axis_stable": table[0]["F_r"] < 0.0, "complete": len(entries) == len(liftmap.read_positions(folder))}
 
 
@@ -163,12 +209,12 @@ def figure(args):
     if not maps:
         raise liftmap.LiftMapError(f"no map in '{root}' has two positions that ended normally yet")
     with open(root / "regime.csv", "w") as f:
-        f.write("map,Re,we_over_re,complete,blown_up,axis_stable,stable_r,unstable_r,F_r_by_radius\n")
+        f.write("map,Re,we_over_re,complete,blown_up,axis_stable,r_eq,r_eq_err,stable_r,unstable_r,F_r_by_radius\n")
         for m in maps:
             f.write(f"{m['name']},{m['Re']:g},{'' if m['wr'] is None else format(m['wr'], 'g')},{int(m['complete'])},"
-                    f"{m['blown_up']},"
-                    f"{int(m['axis_stable'])},{' '.join(f'{r:.4f}' for r in m['stable'])},"
-                    f"{' '.join(f'{r:.4f}' for r, s in m['zeros'] if not s)},"
+                    f"{m['blown_up']},{int(m['axis_stable'])},{m['r']:.4f},{m['r_err']:.4f},"
+                    f"{' '.join(f'{r:.4f}' for r in m['stable'])},"
+                    f"{' '.join(f'{r:.4f}' for r, s, _ in m['zeros'] if not s)},"
                     f"{' '.join(by_radius(e) for e in m['table'])}\n")
     import matplotlib
     matplotlib.use("Agg")
@@ -179,7 +225,7 @@ def figure(args):
     norm = plt.Normalize(0.0, 0.8)
     cmap = plt.get_cmap("viridis")
     for m in soft:
-        r = max(m["stable"]) if m["stable"] else 0.0
+        r = m["r"]
         mark = "o" if m["stable"] else "s"
         ax.scatter([m["Re"]], [m["wr"]], c=[r], cmap=cmap, norm=norm, marker=mark, s=140,
                    edgecolors="r" if m["axis_stable"] and m["stable"] else "k", linewidths=2 if m["axis_stable"] else 0.8)
@@ -189,7 +235,7 @@ def figure(args):
         ax.scatter([m["Re"]], [m["wr"]], marker="x", s=90, c="k")
         ax.annotate("blew up", (m["Re"], m["wr"]), textcoords="offset points", xytext=(0, 9), ha="center", fontsize=7)
     for re, m in rigid.items():  # the stiff limit: the rigid sphere's zero, below the soft rows
-        r = max(m["stable"]) if m["stable"] else 0.0
+        r = m["r"]
         y = min(x["wr"] for x in soft) / 4 if soft else 1e-4
         ax.scatter([re], [y], c=[r], cmap=cmap, norm=norm, marker="D", s=120, edgecolors="k")
         ax.annotate(f"rigid {r:.2f}", (re, y), textcoords="offset points", xytext=(0, 9), ha="center", fontsize=7)
@@ -206,8 +252,8 @@ def figure(args):
         row = sorted((m for m in soft if m["Re"] == re), key=lambda m: m["wr"])
         c = colours[n % len(colours)]
         if row:
-            bx.plot([m["wr"] for m in row], [max(m["stable"]) if m["stable"] else 0.0 for m in row],
-                    marker="o", color=c, label=f"Re = {re:g}, held")
+            bx.errorbar([m["wr"] for m in row], [m["r"] for m in row], yerr=[m["r_err"] for m in row],
+                        marker="o", capsize=2, color=c, label=f"Re = {re:g}, held")
             both = [m for m in row if m["stable"] and m["axis_stable"]]  # the axis stable as well
             bx.plot([m["wr"] for m in both], [0.0] * len(both), marker="o", mfc="w", color=c, ls="none")
         free = [f for f in frees if f["Re"] == re]
@@ -215,7 +261,7 @@ def figure(args):
             bx.plot([f["wr"] for f in free], [f["r"] for f in free], marker="*", ms=10, color=c, ls="none",
                     label=f"Re = {re:g}, free")
         if re in rigid and rigid[re]["stable"]:
-            bx.axhline(max(rigid[re]["stable"]), color=c, ls="--", lw=0.9)
+            bx.axhline(rigid[re]["r"], color=c, ls="--", lw=0.9)
     bx.set_xscale("log")
     bx.set_xlabel("We / Re")
     bx.set_ylabel("stable r / R (0: the axis; dashed: the rigid sphere)")

@@ -3,12 +3,12 @@
 # (Re, We): the rigid sphere F_r = r (0.6 - r) (r in units of R), a soft one with We/Re = w
 # F_r = r (0.6 - 2w - r) for w < 0.05, -r (r - 0.3)(r - 0.6) at w = 0.05 (the axis and 0.6 both
 # stable) and -r for w > 0.05 (the axis only). The tool must pass flow.Re and solid.We = Re w,
-# find each stable radius within the linear interpolation's bound (dr)^2 |F''| / (8 |F'|) (dr = 0.1:
-# 0.0045 for the quadratics, |F''| = 2 and |F'| >= 0.56; 0.015 for the cubic, |F''| <= 2.1 and
-# |F'| = 0.18), say where the axis is stable, draw the figure, and report a failed position with
-# exit 1 while the figure still draws the finished maps and leaves out a blown-up run's forces
-# (rows, but no summary.json); a radius run later joins its map, and a malformed list is refused
-# with exit 2.
+# find each stable radius (the parabola through three radii: exact, to 1e-9, for the quadratics;
+# for the cubic within its reported error bar and the linear interpolation's bound
+# (dr)^2 |F''| / (8 |F'|) = 0.015 for dr = 0.1, |F''| <= 2.1 and |F'| = 0.18), say where the
+# axis is stable, draw the figure, and report a failed position with exit 1 while the figure
+# still draws the finished maps and leaves out a blown-up run's forces (rows, but no
+# summary.json); a radius run later joins its map, and a malformed list is refused with exit 2.
 #   usage: test_regime.sh WORK_DIR
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -65,16 +65,16 @@ import csv, sys
 rows = {r["map"]: r for r in csv.DictReader(open(sys.argv[1]))}
 assert len(rows) == 7, sorted(rows)
 def radius(name):
-    s = rows[name]["stable_r"].split()
-    return max(float(v) for v in s) if s else 0.0
+    return float(rows[name]["r_eq"])
 for re in ("10", "30"):
-    assert abs(radius(f"re{re}_rigid") - 0.6) < 0.0045 and rows[f"re{re}_rigid"]["axis_stable"] == "0", rows
-    assert abs(radius(f"re{re}_wr0.05") - 0.6) < 0.015 and rows[f"re{re}_wr0.05"]["axis_stable"] == "1", rows
+    assert abs(radius(f"re{re}_rigid") - 0.6) < 1e-9 and rows[f"re{re}_rigid"]["axis_stable"] == "0", rows
+    bar = float(rows[f"re{re}_wr0.05"]["r_eq_err"])
+    assert abs(radius(f"re{re}_wr0.05") - 0.6) <= min(bar, 0.015) and rows[f"re{re}_wr0.05"]["axis_stable"] == "1", rows
 assert radius("re10_wr0.2") == 0.0 and rows["re10_wr0.2"]["axis_stable"] == "1", rows
 assert "re30_wr0.2" not in rows, rows  # every position blew up: no forces from it
 assert rows["re30_wr0.01"]["blown_up"] == "0", rows  # failed, but not a blow-up
-assert abs(radius("re10_wr0.01") - 0.58) < 0.0045 and rows["re10_wr0.01"]["complete"] == "1", rows
-assert abs(radius("re30_wr0.01") - 0.58) < 0.0045 and rows["re30_wr0.01"]["complete"] == "0", rows
+assert abs(radius("re10_wr0.01") - 0.58) < 1e-9 and rows["re10_wr0.01"]["complete"] == "1", rows
+assert abs(radius("re30_wr0.01") - 0.58) < 1e-9 and rows["re30_wr0.01"]["complete"] == "0", rows
 print("regime: radii, the axis's stability and the failed position as expected")
 PY
 # a radius run later joins the map's table
