@@ -25,7 +25,8 @@ particles settled (stars). A zero is the root of the parabola through the two ra
 it and their nearer neighbour; its error bar, the distance to the linear interpolation's root,
 is the interpolation's own uncertainty (the forces' drift is in the table). The table
 OUT_ROOT/regime.csv lists, per map, the outer stable radius and its error bar, every zero, whether
-the axis is stable (F_r < 0 at the innermost radius) and F_r with its drift at each radius.
+the axis is stable (F_r < 0 at the innermost radius) and F_r with its drift at each radius;
+OUT_ROOT/regime_table.md the same as a Markdown table, a row per Re.
 Exit code: 0 done, 1 a run failed (the figure still draws the finished ones), 2 a usage error.
 """
 import argparse
@@ -170,7 +171,7 @@ def summarise_map(folder, average_from):
         meta = next(csv.DictReader(f))
     case = liftmap.read_case(folder / "liftmap_case.toml")
     entries = ended_normally(folder)
-    out = {"name": folder.name, "Re": float(meta["Re"]),
+    out = {"name": folder.name, "folder": str(folder), "Re": float(meta["Re"]),
            "wr": float(meta["we_over_re"]) if meta["we_over_re"] else None,
            "blown_up": sum(1 for e in liftmap.read_positions(folder) if blew_up(folder / f"{e[0]}.log"))}
     if len(entries) < 2:
@@ -179,9 +180,11 @@ def summarise_map(folder, average_from):
                    key=lambda e: e["r_over_R"])
     zeros = zeros_with_bars(table)
     stable = [(r, e) for r, s, e in zeros if s]
-    outer = max(stable) if stable else (0.0, 0.0)
+    axis = table[0]["F_r"] < 0.0
+    # no stable zero: the axis where F_r points inwards at the innermost radius, else none found (nan)
+    outer = max(stable) if stable else ((0.0, 0.0) if axis else (math.nan, math.nan))
     return {**out, "table": table, "zeros": zeros, "stable": [r for r, _ in stable], "r": outer[0], "r_err": outer[1],
-            "axis_stable": table[0]["F_r"] < 0.0, "complete": len(entries) == len(liftmap.read_positions(folder))}
+            "axis_stable": axis, "complete": len(entries) == len(liftmap.read_positions(folder))}
 
 
 def read_free(path):
@@ -200,6 +203,35 @@ def by_radius(e):
     return "%.3f:%.3e+-%.1e" % (e["r_over_R"], e["F_r"], e["F_r_spread"])
 
 
+def cell_text(m):
+    """One map in a table cell: the stable radius and its error bar, the axis, F_r at the innermost radius."""
+    if m is None:
+        return "not run"
+    if not m["table"]:
+        return "blew up" if m["blown_up"] else "running"
+    inner = m["table"][0]
+    text = f"{m['r']:.2f} +- {m['r_err']:.2f}" if m["stable"] else ("axis" if m["axis_stable"] else "no stable zero")
+    if m["stable"] and m["axis_stable"]:
+        text += " and axis"
+    text += f"; F_r({inner['r_over_R']:.2g}) {inner['F_r']:+.1e} +- {inner['F_r_spread']:.0e}"
+    missing = len(liftmap.read_positions(Path(m["folder"]))) - len(m["table"])
+    if missing:
+        text += f"; {missing} radii missing ({m['blown_up']} blew up)"
+    return text
+
+
+def write_markdown(path, every):
+    """The maps as a Markdown table: a row per Re, a column per We/Re and one for the rigid sphere."""
+    res = sorted({m["Re"] for m in every})
+    wrs = sorted({m["wr"] for m in every if m["wr"] is not None})
+    by = {(m["Re"], m["wr"]): m for m in every}
+    with open(path, "w") as f:
+        f.write("| Re | rigid | " + " | ".join(f"We/Re = {w:g}" for w in wrs) + " |\n")
+        f.write("|---" * (len(wrs) + 2) + "|\n")
+        for re in res:
+            f.write(f"| {re:g} | " + " | ".join(cell_text(by.get((re, w))) for w in [None] + wrs) + " |\n")
+
+
 def figure(args):
     root = Path(args.out_root)
     folders = sorted(p.parent for p in root.glob("*/regime_map.csv"))
@@ -216,6 +248,7 @@ def figure(args):
                     f"{' '.join(f'{r:.4f}' for r in m['stable'])},"
                     f"{' '.join(f'{r:.4f}' for r, s, _ in m['zeros'] if not s)},"
                     f"{' '.join(by_radius(e) for e in m['table'])}\n")
+    write_markdown(root / "regime_table.md", every)
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -225,6 +258,9 @@ def figure(args):
     norm = plt.Normalize(0.0, 0.8)
     cmap = plt.get_cmap("viridis")
     for m in soft:
+        if math.isnan(m["r"]):  # F_r outwards at every radius that ended: no equilibrium found
+            ax.scatter([m["Re"]], [m["wr"]], marker="o", s=140, facecolors="w", edgecolors="k")
+            continue
         r = m["r"]
         mark = "o" if m["stable"] else "s"
         ax.scatter([m["Re"]], [m["wr"]], c=[r], cmap=cmap, norm=norm, marker=mark, s=140,
@@ -252,6 +288,7 @@ def figure(args):
         row = sorted((m for m in soft if m["Re"] == re), key=lambda m: m["wr"])
         c = colours[n % len(colours)]
         if row:
+            row = [m for m in row if not math.isnan(m["r"])]
             bx.errorbar([m["wr"] for m in row], [m["r"] for m in row], yerr=[m["r_err"] for m in row],
                         marker="o", capsize=2, color=c, label=f"Re = {re:g}, held")
             both = [m for m in row if m["stable"] and m["axis_stable"]]  # the axis stable as well
