@@ -106,7 +106,7 @@ def run(args):
                 failed.append(f"{folder.name}/{pos}")
     for name, *_ in maps_of(args):
         folder = root / name
-        done = liftmap.finished_positions(folder, [f.split("/")[1] for f in failed if f.startswith(name + "/")])
+        done = ended_normally(folder)  # this run's and earlier ones'; a blown-up run's forces are left out
         if len(done) >= 2:
             liftmap.write_table(case, folder, done, args.average_from)
     if failed:
