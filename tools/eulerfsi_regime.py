@@ -216,7 +216,7 @@ def cell_text(m):
     text += f"; F_r({inner['r_over_R']:.2g}) {inner['F_r']:+.1e} +- {inner['F_r_spread']:.0e}"
     missing = len(liftmap.read_positions(Path(m["folder"]))) - len(m["table"])
     if missing:
-        text += f"; {missing} radii missing ({m['blown_up']} blew up)"
+        text += f"; {missing} {'radius' if missing == 1 else 'radii'} missing ({m['blown_up']} blew up)"
     return text
 
 
