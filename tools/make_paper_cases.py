@@ -32,7 +32,9 @@ RESOLUTIONS = {
     # within 0.0046 R of Lx = 3 to t = 20 (docs/REPRODUCTION.md).
     "desk": dict(length=2.0, cells=(80, 40, 40), every=20, fields_every=4000, checkpoint_every=1000, cfl=0.4,
                  model="reference-map",
-                 note="desk resolution: 40 cells across the pipe, 8 per particle diameter, Lx = 2, the reference map (docs/REPRODUCTION.md)"),
+                 note="desk resolution: 40 cells across the pipe, 8 per particle diameter, Lx = 2, the reference map (docs/REPRODUCTION.md);\n"
+                      "# r/R good to ~0.05-0.1 R here, ~0.02-0.03 R at 12 per d (--set 'domain.cells=[120,60,60]', released with\n"
+                      "# --set 'solid[0].initial_velocity=\"fluid\"': finer, a soft one released at rest can blow up; README, \"Choosing a model\")"),
 }
 
 
