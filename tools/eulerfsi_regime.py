@@ -265,7 +265,8 @@ def figure(args):
         mark = "o" if m["stable"] else "s"
         ax.scatter([m["Re"]], [m["wr"]], c=[r], cmap=cmap, norm=norm, marker=mark, s=140,
                    edgecolors="r" if m["axis_stable"] and m["stable"] else "k", linewidths=2 if m["axis_stable"] else 0.8)
-        ax.annotate(f"{r:.2f}" + ("" if m["complete"] else "?"), (m["Re"], m["wr"]), textcoords="offset points",
+        ax.annotate((f"{r:.2f}" if m["stable"] else "axis") + ("" if m["complete"] else "?"), (m["Re"], m["wr"]),
+                    textcoords="offset points",
                     xytext=(0, 9), ha="center", fontsize=7)
     for m in failed:  # every position blew up: the map's limit, not a regime
         ax.scatter([m["Re"]], [m["wr"]], marker="x", s=90, c="k")
