@@ -107,6 +107,17 @@ def read_positions(root):
         return [(row["position"], float(row["y"]), float(row["z"])) for row in csv.DictReader(f)]
 
 
+def record_positions(root, entries):
+    """Adds (name, y, z) entries to a map's liftmap_positions.csv: positions added to a folder join
+    those already there (the table verb reads them all)."""
+    known = read_positions(root) if (root / "liftmap_positions.csv").exists() else []
+    names = {e[0] for e in known}
+    with open(root / "liftmap_positions.csv", "w") as f:
+        f.write("position,y,z\n")
+        for name, y, z in known + [e for e in entries if e[0] not in names]:
+            f.write(f"{name},{y!r},{z!r}\n")
+
+
 def finished_positions(root, failed=()):
     """The folder's positions whose run has written a particle.csv, less those that failed."""
     return [e for e in read_positions(root) if e[0] not in failed and (root / e[0] / "particle.csv").exists()]
@@ -341,13 +352,7 @@ def main(argv=None):
             root = Path(args.out_root)
             root.mkdir(parents=True, exist_ok=True)
             (root / "liftmap_case.toml").write_text(Path(args.case).read_text())
-            # positions added to a folder join those already there (the table verb reads them all)
-            known = read_positions(root) if (root / "liftmap_positions.csv").exists() else []
-            names = {e[0] for e in known}
-            with open(root / "liftmap_positions.csv", "w") as f:
-                f.write("position,y,z\n")
-                for name, y, z in known + [e for e in entries if e[0] not in names]:
-                    f.write(f"{name},{y!r},{z!r}\n")
+            record_positions(root, entries)
             failed = []
             # the cores shared out: OpenMP threads that outnumber them spin against each other
             threads = max(1, (os.cpu_count() or 1) // (max(1, args.jobs) * max(1, args.np)))

@@ -78,13 +78,7 @@ def run(args):
         folder = root / name
         folder.mkdir(parents=True, exist_ok=True)
         (folder / "liftmap_case.toml").write_text(Path(args.case).read_text())
-        # radii added by a later run join those already there (the figure reads them all)
-        known = liftmap.read_positions(folder) if (folder / "liftmap_positions.csv").exists() else []
-        names = {e[0] for e in known}
-        with open(folder / "liftmap_positions.csv", "w") as f:
-            f.write("position,y,z\n")
-            for pos, y, z in known + [e for e in entries if e[0] not in names]:
-                f.write(f"{pos},{y!r},{z!r}\n")
+        liftmap.record_positions(folder, entries)
         with open(folder / "regime_map.csv", "w") as f:
             f.write(f"Re,we_over_re,model\n{re!r},{'' if wr is None else repr(wr)},{model}\n")
         for pos, y, z in entries:
