@@ -144,9 +144,10 @@ def zeros_with_bars(table):
     r = [e["r_over_R"] for e in table]
     f = [e["F_r"] for e in table]
     for i in range(len(table) - 1):
-        if not (f[i] == 0.0 or f[i] * f[i + 1] < 0.0):
+        found = liftmap.zeros(table[i:i + 2])  # the lift-map tool's linear root and stability
+        if not found:
             continue
-        linear = r[i] if f[i] == 0.0 else r[i] + (r[i + 1] - r[i]) * f[i] / (f[i] - f[i + 1])
+        (linear, stable), = found
         third = [j for j in (i - 1, i + 2) if 0 <= j < len(table)]
         third.sort(key=lambda j: min(abs(r[j] - r[i]), abs(r[j] - r[i + 1])))
         quad = None
@@ -154,7 +155,7 @@ def zeros_with_bars(table):
             pts = sorted([(r[k], f[k]) for k in (i, i + 1, third[0])])
             quad = quadratic_zero(pts, r[i], r[i + 1])
         best = linear if quad is None else quad
-        out.append((best, f[i + 1] < f[i], abs(best - linear)))
+        out.append((best, stable, abs(best - linear)))
     return out
 
 
