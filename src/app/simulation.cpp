@@ -82,7 +82,13 @@ class Simulation {
       ++step_;
       update_frame();
       write_outputs(dt, false);
-      if (cfg_.output.checkpoint_every > 0 && step_ % cfg_.output.checkpoint_every == 0) write_restart_file();
+      if (cfg_.output.checkpoint_every > 0 && step_ % cfg_.output.checkpoint_every == 0) {
+        // the next step's blow-up check first: a checkpoint holds only a state a restart can continue
+        const double dt_stable_now = flow_.stable_dt(solids_.max_wave_speed());
+        const double dt_next = cfg_.time.dt > 0.0 ? cfg_.time.dt : dt_stable_now;
+        if (blown_up(dt_next, dt_stable_now)) return report_blow_up(dt_next, dt_stable_now);
+        write_restart_file();
+      }
       if (step_ % cfg_.output.every == 0 && !opt_.quiet) print_progress(dt, wall_start, done_at_start);
       if (const int sig = agreed_stop_signal()) return stop_on_signal(sig);
     }

@@ -91,5 +91,15 @@ fi
 expect_error "blow-up (CFL)" "CFL number would be" mpi1 run "$good" --out "$work/blowup1" --set time.dt=5.0 --set time.t_end=100
 # a viscous instability: a fixed dt 3.7 times the explicit viscous limit, CFL still small
 expect_error "blow-up (viscous)" "blew up at step" mpi1 run "$good" --out "$work/blowup2" --set flow.Re=1 --set time.dt=2e-3 --set time.max_steps=2000
+# a blow-up keeps the last good checkpoint: the step that blew up is reported, not saved
+expect_error "blow-up keeps a good checkpoint" "last good checkpoint is kept" mpi1 run "$good" --out "$work/blowup3" \
+  --set flow.Re=1 --set time.dt=2e-3 --set time.max_steps=2000 --set output.checkpoint_every=1
+blown=$(sed -n 's/.*blew up at step \([0-9]*\).*/\1/p' "$work/err.txt")
+kept=$(h5dump -a /step "$work/blowup3/checkpoint.h5" 2>/dev/null | sed -n 's/^ *(0): \([0-9]*\).*/\1/p')
+if [ -n "$blown" ] && [ "$kept" = "$((blown - 1))" ]; then
+  echo "ok   blow-up at step $blown: the checkpoint kept is step $kept"
+else
+  echo "FAIL blow-up at step '$blown': the checkpoint kept is step '$kept' (want the step before)"; fail=1
+fi
 [ "$fail" = 0 ] && echo "bad input: every case refused cleanly"
 exit $fail
