@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# tools/show_it_runs.sh and tools/campaign_runs.sh with a stand-in binary that records its
-# arguments: the names they accept, the case and --set arguments each run gets, --restart once a
-# checkpoint exists, T_END, and a clear refusal of an unknown name.
+# tools/show_it_runs.sh, tools/campaign_runs.sh and tools/paper_convergence.sh with a stand-in
+# binary that records its arguments: the names they accept, the case and --set arguments each run
+# gets, --restart once a checkpoint exists, T_END, a clear refusal of an unknown name, and the
+# convergence figure drawn from the runs there are.
 #   usage: test_run_queues.sh WORK_DIR
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -40,4 +41,29 @@ tail -1 "$STUB_LOG" | grep -q -- "--restart$" || fail "no --restart beside a che
 T_END=60 "$root/tools/campaign_runs.sh" re200_we4_r0.2828_visc1 > /dev/null
 tail -1 "$STUB_LOG" | grep -q "cases/desk/re200_we4_r0.2828_visc1.toml --out $RUNS/re200_we4_r0.2828_visc1 --set time.t_end=60 --quiet$" ||
   fail "campaign arguments: $(tail -1 "$STUB_LOG")"
+
+# the convergence queue: every resolution starts with the fluid, the paper model named, the grid scaled
+[ "$("$root/tools/paper_convergence.sh" list | wc -l)" = 16 ] || fail "paper_convergence.sh list: not 16 runs"
+for bad in paper32_we4 map12_we1 paper12; do
+  if out=$("$root/tools/paper_convergence.sh" run "$bad" 2>&1); then fail "paper_convergence.sh accepted $bad"; fi
+  grep -q "unknown run '$bad'" <<< "$out" || fail "no clear message for $bad: $out"
+done
+T_END=30 "$root/tools/paper_convergence.sh" run paper24_we0.125 > /dev/null
+tail -1 "$STUB_LOG" | grep -q "cases/desk/re200_we0.125_r0.2828_visc1.toml --set time.t_end=30 .*initial_velocity=\"fluid\" .*model=\"paper\" .*cells=\[240,120,120\] --out $RUNS/paper24_we0.125 --quiet$" ||
+  fail "paper24_we0.125 arguments: $(tail -1 "$STUB_LOG")"
+RUNS=$work/runs/convergence "$root/tools/paper_convergence.sh" run map12_we4 > /dev/null
+tail -1 "$STUB_LOG" | grep -q "cells=\[120,60,60\] --out" && ! tail -1 "$STUB_LOG" | grep -q 'model="paper"' ||
+  fail "map12_we4 arguments: $(tail -1 "$STUB_LOG")"
+conv=$work/runs/convergence
+if out=$(RUNS=$conv "$root/tools/paper_convergence.sh" figure 2>&1); then fail "a figure without runs"; fi
+grep -q "no runs under" <<< "$out" || fail "no clear message for a figure without runs: $out"
+for name in paper8_we4 map8_we4; do
+  mkdir -p "$conv/$name"
+  model=reference-map; [ "$name" = paper8_we4 ] && model=paper
+  printf '[flow]\nRe = 200.0\n[domain]\nlength = [2.0, 1.0, 1.0]\ncells = [80, 40, 40]\n[[solid]]\nmodel = "%s"\nWe = 4.0\n' \
+    "$model" > "$conv/$name/config.resolved.toml"
+  printf 't,r_over_R,taylor_D\n0,0.28,0\n1,0.25,0.05\n2,0.3,0.1\n' > "$conv/$name/particle.csv"
+done
+RUNS=$conv "$root/tools/paper_convergence.sh" figure "$work/conv.png" > /dev/null || fail "the convergence figure failed"
+[ -s "$work/conv.png" ] || fail "no convergence figure"
 echo "run queues: OK"

@@ -1,0 +1,65 @@
+#!/usr/bin/env bash
+# The paper model's convergence beside the map's (docs/REPRODUCTION.md, "The paper model in
+# resolution"): the campaign's Re = 200 cases (cases/desk, r0/R = 0.2828, Lx = 2, grid following
+# the particle, CFL 0.4) with the paper's psi/B transport and with the reference map, at 8, 12, 16
+# and 24 cells per d, We = 4 and 0.125. Every run starts with the particle moving with the fluid
+# (at 12 cells per d and finer a soft map particle released at rest can blow up; README, "Known
+# limitations"), so the resolutions differ in nothing else. Each run has its own folder under RUNS
+# (default runs/convergence; runs/ is ignored by git) and is checkpointed: the same command
+# continues it. `figure` draws r/R and D against t of every finished or running run.
+#   usage: tools/paper_convergence.sh run NAME [NAME ...]   NAME: {paper,map}{8,12,16,24}_we{4,0.125}
+#          tools/paper_convergence.sh figure [OUT.png]       (default RUNS/paper_convergence.png)
+#          tools/paper_convergence.sh list
+#   environment: BIN (default build/eulerfsi), RUNS, NICE (default 10), T_END (default 40),
+#                PYTHON (default /usr/bin/python3)
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+bin=${BIN:-$root/build/eulerfsi}
+runs=${RUNS:-$PWD/runs/convergence}
+nice_level=${NICE:-10}
+t_end=${T_END:-40}
+python=${PYTHON:-/usr/bin/python3}
+
+names() {
+  for m in paper map; do for c in 8 12 16 24; do for w in 4 0.125; do echo "${m}${c}_we${w}"; done; done; done
+}
+
+case_args() {  # NAME -> the case file and --set arguments of that run
+  local name=$1 model cells we
+  [[ $name =~ ^(paper|map)(8|12|16|24)_we(4|0\.125)$ ]] ||
+    { echo "unknown run '$name' (list: $0 list)" >&2; return 2; }
+  model=${BASH_REMATCH[1]}; cells=${BASH_REMATCH[2]}; we=${BASH_REMATCH[3]}
+  echo -n "$root/cases/desk/re200_we${we}_r0.2828_visc1.toml"
+  echo -n " --set time.t_end=$t_end --set output.checkpoint_every=500 --set output.fields_every=0"
+  echo -n " --set solid[0].initial_velocity=\"fluid\""
+  [ "$model" = paper ] && echo -n " --set solid[0].model=\"paper\""
+  echo -n " --set domain.cells=[$((10 * cells)),$((5 * cells)),$((5 * cells))]"
+  echo
+}
+
+cmd=${1:-list}
+shift || true
+case $cmd in
+  list) names ;;
+  run)
+    [ $# -gt 0 ] || { echo "usage: $0 run NAME [NAME ...] (list: $0 list)" >&2; exit 2; }
+    mkdir -p "$runs"
+    for name in "$@"; do
+      line=$(case_args "$name") || exit 2
+      read -r -a args <<< "$line"
+      dir=$runs/$name
+      restart=()
+      [ -f "$dir/checkpoint.h5" ] && restart=(--restart)
+      echo "[paper_convergence] $name -> $dir ${restart[*]}"
+      OMP_NUM_THREADS=${OMP_NUM_THREADS:-1} nice -n "$nice_level" \
+        "$bin" run "${args[@]}" --out "$dir" --quiet "${restart[@]}" >> "$runs/$name.log" 2>&1 ||
+        echo "[paper_convergence] $name stopped with status $? (log: $runs/$name.log)"
+    done ;;
+  figure)
+    out=${1:-$runs/paper_convergence.png}
+    found=()
+    for name in $(names); do [ -f "$runs/$name/particle.csv" ] && found+=("$runs/$name"); done
+    [ ${#found[@]} -gt 0 ] || { echo "no runs under $runs (run: $0 run NAME)" >&2; exit 2; }
+    "$python" "$root/tools/eulerfsi_plot.py" models "${found[@]}" --out "$out" ;;
+  *) echo "unknown command '$cmd' (run, figure, list)" >&2; exit 2 ;;
+esac
