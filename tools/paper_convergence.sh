@@ -31,6 +31,7 @@ case_args() {  # NAME -> the case file and --set arguments of that run
   model=${BASH_REMATCH[1]}; cells=${BASH_REMATCH[2]}; we=${BASH_REMATCH[3]}
   echo -n "$root/cases/desk/re200_we${we}_r0.2828_visc1.toml"
   echo -n " --set time.t_end=$t_end --set output.checkpoint_every=500 --set output.fields_every=0"
+  echo -n " --set output.shape_times=[0.0,5.0,10.0,20.0,30.0,40.0]"
   echo -n " --set solid[0].initial_velocity=\"fluid\""
   [ "$model" = paper ] && echo -n " --set solid[0].model=\"paper\""
   echo -n " --set domain.cells=[$((10 * cells)),$((5 * cells)),$((5 * cells))]"
