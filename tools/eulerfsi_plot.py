@@ -274,12 +274,33 @@ def model_label(run):
     return f"{method_tag(run)}, $We$={fmt(s.get('We'))}"
 
 
-def plot_models(paths, out=None, labels=None):
+def outline_at(run, t):
+    """The cross-section of solid 0 saved nearest to solver time t, closed, in units of R, and its t."""
+    step, t_saved = pick_shapes(shape_index(run), [t])[0]
+    d = read_csv(run.file(f"shapes/{step:08d}.csv"))
+    need(d, ["x", "s"], f"{run.name}/shapes/{step:08d}.csv")
+    m = d.get("solid", np.zeros_like(d["x"])) == 0
+    radius = pipe_radius(run.config)
+    x, s = closed_outline(d["x"][m] / radius, d["s"][m] / radius)
+    return x, s, t_saved
+
+
+def plot_models(paths, out=None, labels=None, shape_times=None):
     """r/R and the Taylor deformation D against t U_b/D, one line per run labelled by solid model and
-    resolution (the solid-model comparison of docs/REFERENCE_MAP.md)."""
+    resolution (the solid-model comparison of docs/REFERENCE_MAP.md); with shape_times (in t U_b/D)
+    a row below with every run's cross-section at each of those times, in the run's colour."""
     runs = load_runs(paths)
     names = given_labels(runs, labels)
-    fig, (ax_r, ax_d) = plt.subplots(1, 2, figsize=(11, 4.0))
+    if shape_times:
+        fig = plt.figure(figsize=(11, 7.5), layout="constrained")
+        gs = fig.add_gridspec(2, 2 * len(shape_times), height_ratios=[1.0, 1.1])
+        n_half = len(shape_times)
+        ax_r, ax_d = fig.add_subplot(gs[0, :n_half]), fig.add_subplot(gs[0, n_half:])
+        ax_shapes = [fig.add_subplot(gs[1, 2 * i:2 * i + 2]) for i in range(len(shape_times))]
+    else:
+        fig, (ax_r, ax_d) = plt.subplots(1, 2, figsize=(11, 4.0))
+        ax_shapes = []
+    s_range, x_half = [1.0, 0.0], 0.0  # the sections' extent in s/R and x/R, for the panels' limits
     for n, run in enumerate(runs):
         d = run.particle(0)
         need(d, ["t", "r_over_R", "taylor_D"], f"{run.name}/particle.csv")
@@ -287,6 +308,15 @@ def plot_models(paths, out=None, labels=None):
         style = "-" if "reference" in model_label(run) else "--"
         line, = ax_r.plot(t, d["r_over_R"], style, label=names[n] if names else model_label(run))
         ax_d.plot(t, d["taylor_D"], style, color=line.get_color())
+        for ax, want in zip(ax_shapes, shape_times or []):
+            if not run.has("shapes/index.csv") or t[-1] < want * (1 - 1e-6):
+                continue  # not there yet
+            x, s, t_saved = outline_at(run, want / run.time_scale())
+            if abs(t_saved * run.time_scale() - want) > 0.01 * want + 0.01:
+                continue  # no section saved at that time
+            ax.plot(x, s, style, color=line.get_color(), lw=1)
+            s_range[0], s_range[1] = min(s_range[0], s.min()), max(s_range[1], s.max())
+            x_half = max(x_half, np.abs(x).max())
     ax_r.set_xlabel(T_LABEL)
     ax_r.set_ylabel(R_LABEL)
     ax_r.set_ylim(bottom=0)
@@ -296,6 +326,17 @@ def plot_models(paths, out=None, labels=None):
     ax_r.legend(fontsize=7)
     for ax in (ax_r, ax_d):
         ax.grid(alpha=0.3)
+    for ax, want in zip(ax_shapes, shape_times or []):
+        ax.axhline(0, color="gray", ls="--", lw=0.6)  # the axis and the wall, where in reach
+        ax.axhline(1, color="k", lw=1.5)
+        if s_range[0] < s_range[1]:
+            ax.set_ylim(max(-0.02, s_range[0] - 0.05), min(1.02, s_range[1] + 0.05))
+            ax.set_xlim(-x_half - 0.05, x_half + 0.05)
+        ax.set_aspect("equal")
+        ax.grid(alpha=0.3)
+        ax.set_title(rf"cross-sections at $t\,U_b/D$ = {want:g}", fontsize=9)
+        ax.set_xlabel(r"$x/R$ (from the centroid)", fontsize=8)
+        ax.set_ylabel(r"$s/R$", fontsize=8)
     return save(fig, default_out(runs, "models.png", out))
 
 
@@ -622,8 +663,10 @@ def build_parser():
     s.set_defaults(func=lambda a: plot_shapes(a.runs[0], a.times, a.out))
     add("forces", "F_r and its pressure, inertia, viscous, elastic parts against t (figs 11, 13)",
         label=True).set_defaults(func=lambda a: plot_forces(a.runs, a.out, a.label_by))
-    add("models", "r/R and D against t, labelled by solid model and cells per diameter", labels=True).set_defaults(
-        func=lambda a: plot_models(a.runs, a.out, a.labels))
+    s = add("models", "r/R and D against t, labelled by solid model and cells per diameter", labels=True)
+    s.add_argument("--shape-times", nargs="+", type=float, metavar="T",
+                   help="also every run's cross-section at these times t U_b/D, overlaid")
+    s.set_defaults(func=lambda a: plot_models(a.runs, a.out, a.labels, a.shape_times))
     add("flow", "bulk_u, dp/dx, max_div, kinetic energy against t", multi=False).set_defaults(
         func=lambda a: plot_flow(a.runs[0], a.out))
     add("all", "every plot that applies to the runs", label=True,

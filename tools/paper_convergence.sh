@@ -6,12 +6,13 @@
 # (at 12 cells per d and finer a soft map particle released at rest can blow up; README, "Known
 # limitations"), so the resolutions differ in nothing else. Each run has its own folder under RUNS
 # (default runs/convergence; runs/ is ignored by git) and is checkpointed: the same command
-# continues it. `figure` draws r/R and D against t of every finished or running run.
+# continues it. `figure` draws r/R and D against t of every finished or running run, and their
+# cross-sections at SHAPE_TIMES.
 #   usage: tools/paper_convergence.sh run NAME [NAME ...]   NAME: {paper,map}{8,12,16,24}_we{4,0.125}
 #          tools/paper_convergence.sh figure [OUT.png]       (default RUNS/paper_convergence.png)
 #          tools/paper_convergence.sh list
 #   environment: BIN (default build/eulerfsi), RUNS, NICE (default 10), T_END (default 40),
-#                PYTHON (default /usr/bin/python3)
+#                PYTHON (default /usr/bin/python3), SHAPE_TIMES (figure's sections, default "10 30 40")
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 bin=${BIN:-$root/build/eulerfsi}
@@ -61,6 +62,8 @@ case $cmd in
     found=()
     for name in $(names); do [ -f "$runs/$name/particle.csv" ] && found+=("$runs/$name"); done
     [ ${#found[@]} -gt 0 ] || { echo "no runs under $runs (run: $0 run NAME)" >&2; exit 2; }
-    "$python" "$root/tools/eulerfsi_plot.py" models "${found[@]}" --out "$out" ;;
+    # shape_times (environment, t U_b / D): the cross-sections drawn, for the runs that saved them
+    read -r -a shapes <<< "${SHAPE_TIMES:-10 30 40}"
+    "$python" "$root/tools/eulerfsi_plot.py" models "${found[@]}" --shape-times "${shapes[@]}" --out "$out" ;;
   *) echo "unknown command '$cmd' (run, figure, list)" >&2; exit 2 ;;
 esac

@@ -62,7 +62,11 @@ for name in paper8_we4 map8_we4; do
   model=reference-map; [ "$name" = paper8_we4 ] && model=paper
   printf '[flow]\nRe = 200.0\n[domain]\nlength = [2.0, 1.0, 1.0]\ncells = [80, 40, 40]\n[[solid]]\nmodel = "%s"\nWe = 4.0\n' \
     "$model" > "$conv/$name/config.resolved.toml"
-  printf 't,r_over_R,taylor_D\n0,0.28,0\n1,0.25,0.05\n2,0.3,0.1\n' > "$conv/$name/particle.csv"
+  printf 't,r_over_R,taylor_D\n0,0.28,0\n5,0.25,0.05\n10,0.3,0.1\n' > "$conv/$name/particle.csv"
+  # a section at t = 10 (a circle of radius 0.1 at s = 0.15), drawn in the panel for t = 10
+  mkdir -p "$conv/$name/shapes" && printf 'step,t\n0,0\n7,10\n' > "$conv/$name/shapes/index.csv"
+  /usr/bin/python3 -c "import math; print('solid,segment,x,s'); [print(f'0,0,{0.1*math.cos(a/10)},{0.15+0.1*math.sin(a/10)}') for a in range(63)]" \
+    > "$conv/$name/shapes/00000007.csv"
 done
 RUNS=$conv "$root/tools/paper_convergence.sh" figure "$work/conv.png" > /dev/null || fail "the convergence figure failed"
 [ -s "$work/conv.png" ] || fail "no convergence figure"
