@@ -8,7 +8,9 @@
 # (default runs/convergence; runs/ is ignored by git) and is checkpointed: the same command
 # continues it. `figure` draws r/R and D against t of every finished or running run, and their
 # cross-sections at SHAPE_TIMES.
-#   usage: tools/paper_convergence.sh run NAME [NAME ...]   NAME: {paper,map}{8,12,16,24}_we{4,0.125}
+#   usage: tools/paper_convergence.sh run NAME [NAME ...]   NAME: {paper,map}{8,12,16,24}_we{4,0.125},
+#                                                           or paper..._noext: B transported everywhere
+#                                                           as the paper does, at CFL 0.2
 #          tools/paper_convergence.sh figure [OUT.png]       (default RUNS/paper_convergence.png)
 #          tools/paper_convergence.sh list
 #   environment: BIN (default build/eulerfsi), RUNS, NICE (default 10), T_END (default 40),
@@ -23,18 +25,21 @@ python=${PYTHON:-/usr/bin/python3}
 
 names() {
   for m in paper map; do for c in 8 12 16 24; do for w in 4 0.125; do echo "${m}${c}_we${w}"; done; done; done
+  for c in 8 12 16 24; do for w in 4 0.125; do echo "paper${c}_we${w}_noext"; done; done
 }
 
 case_args() {  # NAME -> the case file and --set arguments of that run
   local name=$1 model cells we
-  [[ $name =~ ^(paper|map)(8|12|16|24)_we(4|0\.125)$ ]] ||
+  [[ ! $name =~ ^map.*_noext$ && $name =~ ^(paper|map)(8|12|16|24)_we(4|0\.125)(_noext)?$ ]] ||
     { echo "unknown run '$name' (list: $0 list)" >&2; return 2; }
-  model=${BASH_REMATCH[1]}; cells=${BASH_REMATCH[2]}; we=${BASH_REMATCH[3]}
+  model=${BASH_REMATCH[1]}; cells=${BASH_REMATCH[2]}; we=${BASH_REMATCH[3]}; noext=${BASH_REMATCH[4]}
   echo -n "$root/cases/desk/re200_we${we}_r0.2828_visc1.toml"
   echo -n " --set time.t_end=$t_end --set output.checkpoint_every=500 --set output.fields_every=0"
   echo -n " --set output.shape_times=[0.0,5.0,10.0,20.0,30.0,40.0]"
   echo -n " --set solid[0].initial_velocity=\"fluid\""
   [ "$model" = paper ] && echo -n " --set solid[0].model=\"paper\""
+  # the paper's transport of B everywhere (no extension from the solid), at half the time step
+  [ -n "$noext" ] && echo -n " --set solid[0].b_extension=false --set time.cfl=0.2"
   echo -n " --set domain.cells=[$((10 * cells)),$((5 * cells)),$((5 * cells))]"
   echo
 }

@@ -43,14 +43,17 @@ tail -1 "$STUB_LOG" | grep -q "cases/desk/re200_we4_r0.2828_visc1.toml --out $RU
   fail "campaign arguments: $(tail -1 "$STUB_LOG")"
 
 # the convergence queue: every resolution starts with the fluid, the paper model named, the grid scaled
-[ "$("$root/tools/paper_convergence.sh" list | wc -l)" = 16 ] || fail "paper_convergence.sh list: not 16 runs"
-for bad in paper32_we4 map12_we1 paper12; do
+[ "$("$root/tools/paper_convergence.sh" list | wc -l)" = 24 ] || fail "paper_convergence.sh list: not 24 runs"
+for bad in paper32_we4 map12_we1 paper12 map16_we4_noext; do
   if out=$("$root/tools/paper_convergence.sh" run "$bad" 2>&1); then fail "paper_convergence.sh accepted $bad"; fi
   grep -q "unknown run '$bad'" <<< "$out" || fail "no clear message for $bad: $out"
 done
 T_END=30 "$root/tools/paper_convergence.sh" run paper24_we0.125 > /dev/null
 tail -1 "$STUB_LOG" | grep -q "cases/desk/re200_we0.125_r0.2828_visc1.toml --set time.t_end=30 .*initial_velocity=\"fluid\" .*model=\"paper\" .*cells=\[240,120,120\] --out $RUNS/paper24_we0.125 --quiet$" ||
   fail "paper24_we0.125 arguments: $(tail -1 "$STUB_LOG")"
+"$root/tools/paper_convergence.sh" run paper16_we4_noext > /dev/null
+tail -1 "$STUB_LOG" | grep -q 'model="paper" --set solid\[0\].b_extension=false --set time.cfl=0.2 .*cells=\[160,80,80\]' ||
+  fail "paper16_we4_noext arguments: $(tail -1 "$STUB_LOG")"
 RUNS=$work/runs/convergence "$root/tools/paper_convergence.sh" run map12_we4 > /dev/null
 tail -1 "$STUB_LOG" | grep -q "cells=\[120,60,60\] --out" && ! tail -1 "$STUB_LOG" | grep -q 'model="paper"' ||
   fail "map12_we4 arguments: $(tail -1 "$STUB_LOG")"
