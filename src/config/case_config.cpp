@@ -690,6 +690,13 @@ void read_solids(const Reader& r, const toml::table& root, const DomainConfig& d
                                         " (the box is periodic)");
           break;
       }
+      // a sphere less than sqrt(3) cells across can fall between the cell centres and vanish without a
+      // word (the map carries no cell, the volume reads 0): 2 cells across at least
+      const double h_max = std::max({Lx / d.cells[0], Ly / d.cells[1], Lz / d.cells[2]});
+      if (c.diameter < 2 * h_max)
+        r.fail(s + ".diameter", dia + " spans " + fmt_derived(c.diameter / h_max) + " cells of the coarsest spacing " +
+                                    fmt_derived(h_max) + ": a sphere needs at least 2 cells across (one under sqrt(3) "
+                                    "may hold no cell centre); raise domain.cells or the diameter");
     }
     out.push_back(c);
   }

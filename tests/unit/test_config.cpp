@@ -280,10 +280,10 @@ TEST(Config, Spellings) {
 
 TEST(Config, OverridesReplaceAndAdd) {
   const CaseConfig c = parse_case_string(
-      kFull, {"flow.Re=200", "domain.cells=[32,16,16]", "output.dir=\"runs/x\"", "solid[0].We=4",
+      kFull, {"flow.Re=200", "domain.cells=[64,16,16]", "output.dir=\"runs/x\"", "solid[0].We=4",
               " time.max_steps = 7 ", "solid[2].center=[2.0, 0, 0]"});
   EXPECT_EQ(c.flow.Re, 200.0);
-  EXPECT_EQ(c.domain.cells, (std::array<int, 3>{32, 16, 16}));
+  EXPECT_EQ(c.domain.cells, (std::array<int, 3>{64, 16, 16}));
   EXPECT_EQ(c.output.dir, "runs/x");
   EXPECT_EQ(c.solids[0].We, 4.0);
   EXPECT_EQ(c.time.max_steps, 7);
@@ -292,10 +292,10 @@ TEST(Config, OverridesReplaceAndAdd) {
 }
 
 TEST(Config, OverrideCreatesMissingSections) {
-  const CaseConfig c = parse_case_string("", {"time.cfl=0.5", "solid[0].diameter=0.1"});
+  const CaseConfig c = parse_case_string("", {"time.cfl=0.5", "solid[0].diameter=0.25"});
   EXPECT_EQ(c.time.cfl, 0.5);
   ASSERT_EQ(c.solids.size(), 1u);
-  EXPECT_EQ(c.solids[0].diameter, 0.1);
+  EXPECT_EQ(c.solids[0].diameter, 0.25);
 }
 
 TEST(Config, OverrideBareWordIsAString) {
@@ -444,7 +444,8 @@ TEST(ConfigErrors, SolidsInsideTheDomain) {
   expect_error(pipe + "center = [-0.1, 0, 0]\n", {"solid[0].center"});
   expect_error("[domain]\nlength = [0.4, 1, 1]\ncells = [8, 16, 16]\n[[solid]]\ndiameter = 0.45\ncenter = [0.2, 0, 0]\n",
                {"solid[0].diameter = 0.45", "< Lx = 0.4"});
-  const std::string duct = "[domain]\ngeometry = \"duct\"\nlength = [3, 2, 1]\n[[solid]]\ndiameter = 0.2\n";
+  const std::string duct =
+      "[domain]\ngeometry = \"duct\"\nlength = [3, 2, 1]\ncells = [48, 32, 16]\n[[solid]]\ndiameter = 0.2\n";
   EXPECT_NO_THROW(parse_case_string(duct + "center = [1, 0.85, 0.35]\n"));
   expect_error(duct + "center = [1, 0.95, 0]\n", {"solid[0] leaves the duct"});
   expect_error(duct + "center = [1, 0, 0.45]\n", {"solid[0] leaves the duct", "Lz/2 = 0.5"});
@@ -456,6 +457,13 @@ TEST(ConfigErrors, SolidsInsideTheDomain) {
                {"solid[0] leaves the channel"});
   expect_error("[domain]\ngeometry = \"channel\"\nlength = [3, 1, 0.25]\n[[solid]]\ndiameter = 0.3\n",
                {"solid[0].diameter = 0.3", "< Lz = 0.25"});
+}
+
+TEST(ConfigErrors, SphereBelowTheGrid) {
+  // 0.2 across on the default 3 x 1 x 1 pipe of 48 x 16 x 16 cells: 3.2 cells; 0.1: 1.6
+  EXPECT_NO_THROW(parse_case_string("[[solid]]\ndiameter = 0.2\n"));
+  expect_error("[[solid]]\ndiameter = 0.1\n",
+               {"solid[0].diameter = 0.1 spans 1.6 cells of the coarsest spacing 0.0625", "at least 2 cells across"});
 }
 
 TEST(ConfigErrors, OverlappingSpheres) {
