@@ -297,27 +297,42 @@ struct ExtrapolationSweep {
   // (pending_level) and fitted later, if a WENO stencil will read it (DeferredFits).
   bool defer_off_axis = false;
 
+  // How far a fit is trusted, from its conditioning cond = min(det A / (tr A / 3)^3, schur / S): 1
+  // at or above kFitTrusted, 0 at or below kFitUntrusted, a smoothstep in cond between (the
+  // caller blends towards the weighted mean). Sets of whole cells (weights >= 1/12) give cond >=
+  // 0.02 (the Re = 400, We = 0.125 desk case) or exactly 0; the surface ramp's weights
+  // (solid.map_ramp) reach any value between, and a fit resting on cells of weight ~1e-9 (cond
+  // 1e-10) sent a gradient from nothing into the band: a stiff sphere blew up so at Re = 400.
+  static constexpr double kFitTrusted = 1e-3, kFitUntrusted = 1e-5;
+  KOKKOS_INLINE_FUNCTION static double fit_trust(double cond) {
+    if (cond >= kFitTrusted) return 1.0;
+    if (!(cond > kFitUntrusted)) return 0.0;
+    const double x = (cond - kFitUntrusted) / (kFitTrusted - kFitUntrusted);
+    return x * x * (3.0 - 2.0 * x);
+  }
+
   // c0 of the normal equations [[S, m^T], [m, A]] (c0, c) = (b0, b) of the basis (1, r), by the
   // Schur complement: c0 = (b0 - m^T A^-1 b) / (S - m^T A^-1 m), with A^-1 m by cofactors (A, the
   // weighted second moments of the offsets, is symmetric positive definite unless the points lie
-  // in a plane through the cell). False (the caller takes the weighted mean) where A or the
-  // complement is singular: the points do not span a linear fit.
-  KOKKOS_INLINE_FUNCTION static bool fit_centre(double S, const double m[3], const double A[6], const double b0[3],
-                                                const double b[3][3], double out[3]) {
+  // in a plane through the cell). Returns fit_trust (0 where A or the complement is singular: the
+  // points do not span a linear fit; out is then not written).
+  KOKKOS_INLINE_FUNCTION static double fit_centre(double S, const double m[3], const double A[6], const double b0[3],
+                                                  const double b[3][3], double out[3]) {
     // A = [[A0, A3, A4], [A3, A1, A5], [A4, A5, A2]]: cofactors of the symmetric matrix
     const double c00 = A[1] * A[2] - A[5] * A[5], c01 = A[4] * A[5] - A[3] * A[2], c02 = A[3] * A[5] - A[4] * A[1];
     const double c11 = A[0] * A[2] - A[4] * A[4], c12 = A[3] * A[4] - A[0] * A[5], c22 = A[0] * A[1] - A[3] * A[3];
     const double det = A[0] * c00 + A[3] * c01 + A[4] * c02;
     const double scale = (A[0] + A[1] + A[2]) * (1.0 / 3.0);
-    if (!(det > 1e-12 * scale * scale * scale)) return false;
+    if (!(det > 1e-12 * scale * scale * scale)) return 0.0;
     const double inv = 1.0 / det;
     const double y[3] = {(c00 * m[0] + c01 * m[1] + c02 * m[2]) * inv, (c01 * m[0] + c11 * m[1] + c12 * m[2]) * inv,
                          (c02 * m[0] + c12 * m[1] + c22 * m[2]) * inv};
     const double schur = S - (y[0] * m[0] + y[1] * m[1] + y[2] * m[2]);
-    if (!(schur > 1e-10 * S)) return false;
+    if (!(schur > 1e-10 * S)) return 0.0;
     const double inv_schur = 1.0 / schur;
     for (int d = 0; d < 3; ++d) out[d] = (b0[d] - (y[0] * b[0][d] + y[1] * b[1][d] + y[2] * b[2][d])) * inv_schur;
-    return true;
+    const double det_rel = det / (scale * scale * scale), schur_rel = schur / S;
+    return fit_trust(det_rel < schur_rel ? det_rel : schur_rel);
   }
 
   // A level known before this sweep: the solid (1) or a band level up to s.
@@ -382,8 +397,34 @@ struct ExtrapolationSweep {
     level(i, j, k) = s + 1.0;
   }
 
-  // The least-squares value at (i, j, k) through the known cells around it (the cell itself weighs 0).
+  // A fit through the known cells around a cell: its value there (where trust > 0), the cells'
+  // weighted mean, its fit_trust, and whether a surface weight below 1 entered it.
+  struct Fit {
+    double value[3], mean[3], trust;
+    bool ramped;
+  };
+
+  // The least-squares value at (i, j, k) through the known cells around it (the cell itself weighs 0),
+  // the solid cells weighted by their surface_weight. Where those weights starve the fit (trust < 1:
+  // the cells that span it weigh next to nothing) it goes over to the fit through the same cells at
+  // full weight, which is as exact for a rigid motion; to the weighted mean only where no linear fit
+  // exists (a rotating body's map has gradients of order 1: a mean beside it inverts the map).
   KOKKOS_INLINE_FUNCTION void fit_value(int i, int j, int k, double value[3]) const {
+    const Fit f = weighted_fit(i, j, k, true);
+    if (f.trust >= 1.0) {
+      for (int d = 0; d < 3; ++d) value[d] = f.value[d];
+      return;
+    }
+    const Fit full = f.ramped ? weighted_fit(i, j, k, false) : f;  // every cell at full weight
+    for (int d = 0; d < 3; ++d) {
+      double fallback = full.mean[d];
+      if (full.trust > 0.0) fallback += full.trust * (full.value[d] - full.mean[d]);
+      value[d] = f.trust > 0.0 && f.ramped ? fallback + f.trust * (f.value[d] - fallback) : fallback;
+    }
+  }
+
+  // The fit through the known cells, the solid ones weighted by surface_weight if `ramp` (else 1).
+  KOKKOS_INLINE_FUNCTION Fit weighted_fit(int i, int j, int k, bool ramp) const {
     // weights 1/|r|^2 by |r|^2 = 1..12 (the centre, r = 0, is the unknown cell itself)
     const double inv_r2[13] = {0.0,       1.0,       1.0 / 2,  1.0 / 3,  1.0 / 4,  1.0 / 5, 1.0 / 6,
                                1.0 / 7,   1.0 / 8,   1.0 / 9,  1.0 / 10, 1.0 / 11, 1.0 / 12};
@@ -393,6 +434,7 @@ struct ExtrapolationSweep {
     // per known point instead of 22.
     double S = 0, Sa = 0, Sb = 0, Sc = 0, Saa = 0, Sab = 0, Sac = 0, Sbb = 0, Sbc = 0, Scc = 0;
     double rhs[4][3] = {};
+    bool ramped = false;
     // level and q share one window (same_window): one offset serves the four fields (the window
     // accessor computed it for each, 100 times per fit)
     const long s0 = long(level.data.stride(0)), s1 = long(level.data.stride(1));
@@ -410,7 +452,9 @@ struct ExtrapolationSweep {
         const double* w_line = inv_r2 + a * a + b * b;  // w = w_line[c^2]
         for (int c = -2; c <= 2; ++c) {
           if (!known_level(lv[c + 2])) continue;
-          const double w = w_line[c * c] * (lv[c + 2] == kLevelSolid ? wt[c + 2] : 1.0), wc = w * c;
+          const double surface = ramp && lv[c + 2] == kLevelSolid ? wt[c + 2] : 1.0;
+          ramped |= surface < 1.0;
+          const double w = w_line[c * c] * surface, wc = w * c;
           sw += w;
           swc += wc;
           swcc += wc * c;
@@ -432,8 +476,11 @@ struct ExtrapolationSweep {
     const double m[3] = {Sa, Sb, Sc}, A[6] = {Saa, Sbb, Scc, Sab, Sac, Sbc};
     const double b[3][3] = {{rhs[1][0], rhs[1][1], rhs[1][2]}, {rhs[2][0], rhs[2][1], rhs[2][2]},
                             {rhs[3][0], rhs[3][1], rhs[3][2]}};
-    if (!fit_centre(S, m, A, rhs[0], b, value))
-      for (int d = 0; d < 3; ++d) value[d] = S > 0.0 ? rhs[0][d] / S : q.c[d](i, j, k);  // the weighted mean
+    Fit f;
+    f.trust = fit_centre(S, m, A, rhs[0], b, f.value);
+    f.ramped = ramped;
+    for (int d = 0; d < 3; ++d) f.mean[d] = S > 0.0 ? rhs[0][d] / S : q.c[d](i, j, k);
+    return f;
   }
 };
 

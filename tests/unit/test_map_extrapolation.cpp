@@ -126,6 +126,47 @@ TEST(MapExtrapolation, ExactForARigidMotion) {
   }
 }
 
+// A fit whose only cell off a plane weighs next to nothing (the surface ramp's weight of a cell at
+// the classification's edge, ~1e-9 in a stiff sphere at Re = 400) still carries a rigid motion
+// exactly: the fit through the same cells at full weight takes over, not their weighted mean, which
+// beside a body turned by 80 degrees (grad q of order 1) put an inverted map into the band and blew
+// the run up. Known cells: the plane i = 2 at full weight and (3, 5, 5) at weight w; the fitted
+// cell (4, 4, 4); q a rotation by 1.4 about y and a translation.
+TEST(MapExtrapolation, AStarvedFitStillCarriesARigidMotion) {
+  constexpr int n = 9;
+  auto rotated = [](int a, int i, int j, int k) {
+    const double x[3] = {i - 4.0, j - 4.0, k - 4.0}, c = std::cos(1.4), s = std::sin(1.4);
+    const double r[3] = {c * x[0] + s * x[2], x[1], -s * x[0] + c * x[2]};
+    return r[a] - x[a] + (a == 0 ? 0.3 : (a == 1 ? -0.2 : 0.1));
+  };
+  for (const double w : {1.0, 1e-3, 1e-5, 1e-8, 1e-12}) {
+    SCOPED_TRACE(w);
+    kernels::Vector3 q;
+    WindowField level(Field3("level", n, n, n)), weight(Field3("weight", n, n, n));
+    auto hl = Kokkos::create_mirror_view(level.data);
+    auto hw = Kokkos::create_mirror_view(weight.data);
+    Kokkos::deep_copy(hl, 0.0);
+    Kokkos::deep_copy(hw, 0.0);
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < n; ++k) hl(2, j, k) = kernels::kLevelSolid, hw(2, j, k) = 1.0;
+    hl(3, 5, 5) = kernels::kLevelSolid;
+    hw(3, 5, 5) = w;
+    Kokkos::deep_copy(level.data, hl);
+    Kokkos::deep_copy(weight.data, hw);
+    for (int a = 0; a < 3; ++a) {
+      q.c[a] = WindowField(Field3("q", n, n, n));
+      auto h = Kokkos::create_mirror_view(q.c[a].data);
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j)
+          for (int k = 0; k < n; ++k) h(i, j, k) = hl(i, j, k) > 0 ? rotated(a, i, j, k) : 0.0;
+      Kokkos::deep_copy(q.c[a].data, h);
+    }
+    kernels::extrapolation_sweep(q, level, weight, 1, Box{{4, 4, 4}, {5, 5, 5}}, false);
+    for (int a = 0; a < 3; ++a) EXPECT_NEAR(on_host(q.c[a])(4, 4, 4), rotated(a, 4, 4, 4), 1e-12) << "component " << a;
+    EXPECT_EQ(on_host(level)(4, 4, 4), 2.0);
+  }
+}
+
 // A solid cell that leaves the solid (its depth below the edge from +1e-9 to -1e-9 cells, by the
 // margin) while the carried labels of the surface layer have drifted from the interior's linear
 // map (0.05 cells here; about 0.13 h in the quick start at 6.4 cells per d): without the ramp the
