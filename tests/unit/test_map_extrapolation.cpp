@@ -1,5 +1,6 @@
 // The reference map's extrapolation beyond the body (kernels/reference_map.hpp): the least-squares
-// sweeps reproduce a rigid motion exactly, with and without the surface ramp's weights and blend;
+// sweeps reproduce a rigid motion exactly, with and without the surface ramp's weights and blend,
+// also where those weights starve a fit;
 // a cell leaving the solid changes the extension continuously with the ramp (and by a jump
 // without); the last sweep's deferred cells (DeferredFits) hold, wherever anything reads them, the
 // values of a full sweep, bit for bit; the host rows equal the per-cell form (GPUs).
