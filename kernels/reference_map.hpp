@@ -282,6 +282,10 @@ inline void classify_solid(const WindowField& level, const WindowField& weight, 
   });
 }
 
+// The conditioning at and above which an extension fit is trusted whole, and at and below which
+// not at all (ExtrapolationSweep::fit_trust).
+constexpr double kFitTrusted = 1e-3, kFitUntrusted = 1e-5;
+
 // Extrapolation sweep s (Rycroft et al. 2020, sec. 2.4): every unknown cell next to a cell known
 // before this sweep (1 <= level <= s, 26 neighbours) takes the value at its centre of the
 // least-squares linear fit q ~ c0 + c . r through the known cells within two cells (r in cells,
@@ -303,7 +307,6 @@ struct ExtrapolationSweep {
   // 0.02 (the Re = 400, We = 0.125 desk case) or exactly 0; the surface ramp's weights
   // (solid.map_ramp) reach any value between, and a fit resting on cells of weight ~1e-9 (cond
   // 1e-10) sent a gradient from nothing into the band: a stiff sphere blew up so at Re = 400.
-  static constexpr double kFitTrusted = 1e-3, kFitUntrusted = 1e-5;
   KOKKOS_INLINE_FUNCTION static double fit_trust(double cond) {
     if (cond >= kFitTrusted) return 1.0;
     if (!(cond > kFitUntrusted)) return 0.0;
