@@ -309,8 +309,8 @@ def plot_models(paths, out=None, labels=None, shape_times=None):
         line, = ax_r.plot(t, d["r_over_R"], style, label=names[n] if names else model_label(run))
         ax_d.plot(t, d["taylor_D"], style, color=line.get_color())
         for ax, want in zip(ax_shapes, shape_times or []):
-            if not run.has("shapes/index.csv") or t[-1] < want * (1 - 1e-6):
-                continue  # not there yet
+            if not run.has("shapes/index.csv"):
+                continue  # no sections saved
             x, s, t_saved = outline_at(run, want / run.time_scale())
             if abs(t_saved * run.time_scale() - want) > 0.01 * want + 0.01:
                 continue  # no section saved at that time
