@@ -50,18 +50,8 @@ case $cmd in
   list) names ;;
   run)
     [ $# -gt 0 ] || { echo "usage: $0 run NAME [NAME ...] (list: $0 list)" >&2; exit 2; }
-    mkdir -p "$runs"
-    for name in "$@"; do
-      line=$(case_args "$name") || exit 2
-      read -r -a args <<< "$line"
-      dir=$runs/$name
-      restart=()
-      [ -f "$dir/checkpoint.h5" ] && restart=(--restart)
-      echo "[paper_convergence] $name -> $dir ${restart[*]}"
-      OMP_NUM_THREADS=${OMP_NUM_THREADS:-1} nice -n "$nice_level" \
-        "$bin" run "${args[@]}" --out "$dir" --quiet "${restart[@]}" >> "$runs/$name.log" 2>&1 ||
-        echo "[paper_convergence] $name stopped with status $? (log: $runs/$name.log)"
-    done ;;
+    source "$root/tools/queue_runs.sh"
+    queue_runs paper_convergence "$@" ;;
   figure)
     out=${1:-$runs/paper_convergence.png}
     found=()

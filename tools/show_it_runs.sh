@@ -34,15 +34,5 @@ if [ "${1:-}" = list ] || [ $# = 0 ]; then
   echo map16_we4; echo map16_we0.125
   exit 0
 fi
-mkdir -p "$runs"
-for name in "$@"; do
-  line=$(case_args "$name") || exit 2
-  read -r -a args <<< "$line"
-  dir=$runs/$name
-  restart=()
-  [ -f "$dir/checkpoint.h5" ] && restart=(--restart)
-  echo "[show_it_runs] $name -> $dir ${restart[*]}"
-  OMP_NUM_THREADS=${OMP_NUM_THREADS:-1} nice -n "$nice_level" \
-    "$bin" run "${args[@]}" --out "$dir" --quiet "${restart[@]}" >> "$runs/$name.log" 2>&1 ||
-    echo "[show_it_runs] $name stopped with status $? (log: $runs/$name.log)"
-done
+source "$root/tools/queue_runs.sh"
+queue_runs show_it_runs "$@"
