@@ -302,8 +302,8 @@ struct ExtrapolationSweep {
   bool defer_off_axis = false;
 
   // How far a fit is trusted, from its conditioning cond = min(det A / (tr A / 3)^3, schur / S): 1
-  // at or above kFitTrusted, 0 at or below kFitUntrusted, a smoothstep in cond between (the
-  // caller blends towards the weighted mean). Sets of whole cells (weights >= 1/12) give cond >=
+  // at or above kFitTrusted, 0 at or below kFitUntrusted, a smoothstep in cond between (fit_value
+  // blends a starved fit towards the full-weight one). Sets of whole cells (weights >= 1/12) give cond >=
   // 0.02 (the Re = 400, We = 0.125 desk case) or exactly 0; the surface ramp's weights
   // (solid.map_ramp) reach any value between, and a fit resting on cells of weight ~1e-9 (cond
   // 1e-10) sent a gradient from nothing into the band: a stiff sphere blew up so at Re = 400.
