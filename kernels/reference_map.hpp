@@ -401,7 +401,7 @@ struct ExtrapolationSweep {
   }
 
   // A fit through the known cells around a cell: its value there (where trust > 0), the cells'
-  // weighted mean, its fit_trust, and whether a surface weight below 1 entered it.
+  // weighted mean (where trust < 1), its fit_trust, and whether a surface weight below 1 entered it.
   struct Fit {
     double value[3], mean[3], trust;
     bool ramped;
@@ -420,8 +420,9 @@ struct ExtrapolationSweep {
     }
     const Fit full = f.ramped ? weighted_fit(i, j, k, false) : f;  // every cell at full weight
     for (int d = 0; d < 3; ++d) {
-      double fallback = full.mean[d];
-      if (full.trust > 0.0) fallback += full.trust * (full.value[d] - full.mean[d]);
+      double fallback = full.value[d];  // exactly the full-weight fit where it is trusted
+      if (full.trust < 1.0)
+        fallback = full.trust > 0.0 ? full.mean[d] + full.trust * (full.value[d] - full.mean[d]) : full.mean[d];
       value[d] = f.trust > 0.0 && f.ramped ? fallback + f.trust * (f.value[d] - fallback) : fallback;
     }
   }
@@ -482,7 +483,8 @@ struct ExtrapolationSweep {
     Fit f;
     f.trust = fit_centre(S, m, A, rhs[0], b, f.value);
     f.ramped = ramped;
-    for (int d = 0; d < 3; ++d) f.mean[d] = S > 0.0 ? rhs[0][d] / S : q.c[d](i, j, k);
+    if (f.trust < 1.0)  // the mean is read only where the fit is not trusted whole
+      for (int d = 0; d < 3; ++d) f.mean[d] = S > 0.0 ? rhs[0][d] / S : q.c[d](i, j, k);
     return f;
   }
 };
