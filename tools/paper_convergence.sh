@@ -38,6 +38,8 @@ case_args() {  # NAME -> the case file and --set arguments of that run
   echo -n " --set output.shape_times=[0.0,5.0,10.0,20.0,30.0,40.0]"
   echo -n " --set solid[0].initial_velocity=\"fluid\""
   [ "$model" = paper ] && echo -n " --set solid[0].model=\"paper\""
+  # the map's surface as the documented runs had it (no ramp), so every resolution shares it
+  [ "$model" = map ] && echo -n " --set solid[0].map_ramp=0"
   # the paper's transport of B everywhere (no extension from the solid), at half the time step
   [ -n "$noext" ] && echo -n " --set solid[0].b_extension=false --set time.cfl=0.2"
   echo -n " --set domain.cells=[$((10 * cells)),$((5 * cells)),$((5 * cells))]"

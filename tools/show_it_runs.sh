@@ -22,8 +22,9 @@ case_args() {  # NAME -> the case file and --set arguments of that run
   if [ "$we" = 4 ]; then echo -n "$root/cases/validation/migration_soft.toml"
   else echo -n "$root/cases/validation/migration_stiff.toml"; fi
   echo -n " --set flow.pipe_wall=\"sharp\" --set time.t_end=$t_end --set output.checkpoint_every=200"
-  # the map carried from half a cell inside the surface (margin 0.5), as the comparison was run
-  [ "$model" = map ] && echo -n " --set solid[0].model=\"reference-map\" --set solid[0].map_margin=0.5"
+  # the map carried from half a cell inside the surface (margin 0.5, no ramp), as the comparison was run
+  [ "$model" = map ] &&
+    echo -n " --set solid[0].model=\"reference-map\" --set solid[0].map_margin=0.5 --set solid[0].map_ramp=0"
   [ "$cells" = 12 ] && echo -n " --set domain.cells=[120,60,60]"
   [ "$cells" = 16 ] && echo -n " --set domain.cells=[160,80,80]"
   echo

@@ -33,7 +33,7 @@ grep -q "no case 'no_such_case'" <<< "$out" || fail "no clear message for no_suc
 
 # one run each: the arguments, then --restart beside a checkpoint
 "$root/tools/show_it_runs.sh" map16_we4 > /dev/null
-grep -q "migration_soft.toml .*pipe_wall=\"sharp\".*model=\"reference-map\".*cells=\[160,80,80\].*--out $RUNS/map16_we4 --quiet$" \
+grep -q "migration_soft.toml .*pipe_wall=\"sharp\".*model=\"reference-map\".*map_margin=0.5 .*map_ramp=0 .*cells=\[160,80,80\].*--out $RUNS/map16_we4 --quiet$" \
   "$STUB_LOG" || fail "map16_we4 arguments: $(cat "$STUB_LOG")"
 mkdir -p "$RUNS/map16_we4" && touch "$RUNS/map16_we4/checkpoint.h5"  # the stand-in writes no run
 "$root/tools/show_it_runs.sh" map16_we4 > /dev/null
@@ -55,7 +55,7 @@ tail -1 "$STUB_LOG" | grep -q "cases/desk/re200_we0.125_r0.2828_visc1.toml --set
 tail -1 "$STUB_LOG" | grep -q 'model="paper" --set solid\[0\].b_extension=false --set time.cfl=0.2 .*cells=\[160,80,80\]' ||
   fail "paper16_we4_noext arguments: $(tail -1 "$STUB_LOG")"
 RUNS=$work/runs/convergence "$root/tools/paper_convergence.sh" run map12_we4 > /dev/null
-tail -1 "$STUB_LOG" | grep -q "cells=\[120,60,60\] --out" && ! tail -1 "$STUB_LOG" | grep -q 'model="paper"' ||
+tail -1 "$STUB_LOG" | grep -q "map_ramp=0 .*cells=\[120,60,60\] --out" && ! tail -1 "$STUB_LOG" | grep -q 'model="paper"' ||
   fail "map12_we4 arguments: $(tail -1 "$STUB_LOG")"
 conv=$work/runs/convergence
 if out=$(RUNS=$conv "$root/tools/paper_convergence.sh" figure 2>&1); then fail "a figure without runs"; fi
