@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Markdown table of campaign runs for docs/REPRODUCTION.md: per run directory, r/R and D at the
-given times (from particle.csv, the last row at or before each time) and summary.json's t_rev,
-t_cen, T_osc with the oscillation amplitude.
+given times (from particle.csv, the last row at or before each time), summary.json's t_rev,
+t_cen, T_osc with the oscillation amplitude, and the body's model and map surface (from
+config.resolved.toml), so rows made with different settings are told apart.
 
     usage: tools/campaign_table.py RUN_DIR... [--times 1,10,20,40,60]
 """
@@ -9,6 +10,7 @@ import argparse
 import csv
 import json
 import sys
+import tomllib
 from pathlib import Path
 
 
@@ -30,6 +32,20 @@ def at(rows, t):
     return best[1], best[2]
 
 
+def surface(run):
+    """The first body's model and, for the reference map, its surface ramp, as the run resolved them."""
+    try:
+        with open(run / "config.resolved.toml", "rb") as f:
+            solid = tomllib.load(f).get("solid", [{}])[0]
+    except (OSError, tomllib.TOMLDecodeError):
+        return "-"
+    model = solid.get("model")
+    if model != "reference-map":
+        return model or "-"
+    ramp = solid.get("map_ramp", 0.0)
+    return f"map, ramp {ramp:g}, relax {solid.get('map_relax_time', 0.0):g}" if ramp > 0 else "map, no ramp"
+
+
 def fmt(x, digits=2):
     return "-" if x is None else f"{x:.{digits}f}"
 
@@ -40,7 +56,7 @@ def main(argv=None):
     p.add_argument("--times", default="1,10,20,40,60", help="comma-separated times (default 1,10,20,40,60)")
     a = p.parse_args(argv)
     times = [float(t) for t in a.times.split(",")]
-    head = ["run", "t_end"] + [f"r/R, D at t = {t:g}" for t in times] + ["t_rev", "t_cen", "T_osc (amplitude / R)"]
+    head = ["run", "t_end"] + [f"r/R, D at t = {t:g}" for t in times] + ["t_rev", "t_cen", "T_osc (amplitude / R)", "model, surface"]
     print("| " + " | ".join(head) + " |")
     print("|" + "---|" * len(head))
     for run in a.runs:
@@ -59,7 +75,7 @@ def main(argv=None):
             cells.append("-" if v is None else f"{v[0]:.3f}, {v[1]:.3f}")
         osc = s.get("T_osc")
         cells += [fmt(s.get("t_rev")), fmt(s.get("t_cen")),
-                  "-" if osc is None else f"{osc:.1f} ({s.get('oscillation_amplitude', 0.0):.4f})"]
+                  "-" if osc is None else f"{osc:.1f} ({s.get('oscillation_amplitude', 0.0):.4f})", surface(run)]
         print("| " + " | ".join(cells) + " |")
     return 0
 
