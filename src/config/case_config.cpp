@@ -616,9 +616,6 @@ void read_solids(const Reader& r, const toml::table& root, const DomainConfig& d
     if (c.model != SolidModelKind::ReferenceMap && c.map_margin > 0)
       r.fail(s + ".map_margin", s + ".map_margin = " + fmt_double(c.map_margin) + ": applies to " + s +
                                     ".model = \"reference-map\" only (set it to 0 or remove it)");
-    // the map's surface defaults to the relaxed ramp, right for stiff and soft particles alike
-    // (docs/REFERENCE_MAP.md, "The default surface"); the paper model has no map and no ramp
-    if (c.model == SolidModelKind::ReferenceMap) c.map_ramp = kDefaultMapRamp;
     r.get(t, s, "map_ramp", c.map_ramp);
     r.require(c.map_ramp >= 0 && c.map_ramp <= 2, t, s, "map_ramp",
               "must be in [0, 2] (cells below the solid's edge over which a cell's weight in the extension rises "
@@ -626,7 +623,6 @@ void read_solids(const Reader& r, const toml::table& root, const DomainConfig& d
     if (c.model != SolidModelKind::ReferenceMap && t->get("map_ramp"))
       r.fail(s + ".map_ramp", s + ".map_ramp = " + fmt_double(c.map_ramp) + ": applies to " + s +
                                   ".model = \"reference-map\" only (remove it)");
-    if (c.model == SolidModelKind::ReferenceMap && c.map_ramp > 0) c.map_relax_time = kDefaultMapRelaxTime;
     r.get(t, s, "map_relax_time", c.map_relax_time);
     r.require(c.map_relax_time >= 0, t, s, "map_relax_time",
               "must be >= 0 (the time over which the surface ramp's cells relax towards the extension's fit; "

@@ -86,13 +86,6 @@ enum class SolidModelKind { Paper, ReferenceMap, Rigid };
 // the cross-section (y, z held; free along x and free to rotate). src/solid/rigid_model.hpp.
 enum class SolidConstraint { None, Fixed, Radial };
 
-// A case file's reference-map body gets this surface unless it sets its own: ramp 0.5 cells with
-// relax time 0.05 brings the Stokes-limit stiff shear's inclination within 1.1 % of theory and
-// damps the stiff release's oscillation (docs/REFERENCE_MAP.md, "The default surface").
-// SolidConfig's own defaults (0, 0) are the paper model's, which has no map.
-inline constexpr double kDefaultMapRamp = 0.5;
-inline constexpr double kDefaultMapRelaxTime = 0.05;
-
 struct SolidConfig {
   SolidShape shape = SolidShape::Sphere;
   double diameter = 0.2;
@@ -103,9 +96,7 @@ struct SolidConfig {
   double sharpening = 0.0;       // interface sharpening pseudo-step per time step, in units of h (0: off)
   double map_margin = 0.0;       // reference map: carried only deeper than this many cells inside the surface
   double map_ramp = 0.0;        // reference map: a solid cell's weight in the extension rises over this many cells
-                                // (a case file's map body: kDefaultMapRamp)
-  double map_relax_time = 0.0;  // reference map: the ramp's cells relax towards the fit over this time (0: at once;
-                                // a case file's map body with a ramp: kDefaultMapRelaxTime)
+  double map_relax_time = 0.0;  // reference map: the ramp's cells relax towards the fit over this time (0: at once)
   bool b_extension = true;       // paper model: B extended from the solid over a band, I beyond (false: the paper's B)
   InitialSolidVelocity initial_velocity = InitialSolidVelocity::Fluid;
   SolidModelKind model = SolidModelKind::Paper;

@@ -249,27 +249,6 @@ constraint = "radial"
                {"solid[0].constraint = \"pinned\"", "\"radial\""});
 }
 
-// A case file's map body gets the relaxed surface ramp unless it sets its own; turning the ramp off
-// turns its relaxation off with it; the paper model gets neither (it has no map).
-TEST(Config, MapSurfaceDefaults) {
-  const SolidConfig map = parse_case_string("[[solid]]\n").solids.at(0);
-  EXPECT_EQ(map.map_ramp, kDefaultMapRamp);
-  EXPECT_EQ(map.map_relax_time, kDefaultMapRelaxTime);
-  EXPECT_GT(kDefaultMapRamp, 0.0);
-  EXPECT_GT(kDefaultMapRelaxTime, 0.0);
-  const SolidConfig no_ramp = parse_case_string("[[solid]]\nmap_ramp = 0\n").solids.at(0);
-  EXPECT_EQ(no_ramp.map_ramp, 0.0);
-  EXPECT_EQ(no_ramp.map_relax_time, 0.0);
-  const SolidConfig replaced = parse_case_string("[[solid]]\nmap_ramp = 0.25\nmap_relax_time = 0\n").solids.at(0);
-  EXPECT_EQ(replaced.map_ramp, 0.25);
-  EXPECT_EQ(replaced.map_relax_time, 0.0);
-  const SolidConfig paper = parse_case_string("[[solid]]\nmodel = \"paper\"\n").solids.at(0);
-  EXPECT_EQ(paper.map_ramp, 0.0);
-  EXPECT_EQ(paper.map_relax_time, 0.0);
-  // written back, a map body without the ramp stays without it
-  EXPECT_EQ(parse_case_string(to_toml(parse_case_string("[[solid]]\nmap_ramp = 0\n"))).solids.at(0).map_ramp, 0.0);
-}
-
 // A periodic box is driven only where the case gives a flow rate (Hasimoto's array of fixed spheres).
 TEST(Config, PeriodicFlowRateOnlyWhenGiven) {
   const char* box = "[domain]\ngeometry = \"periodic\"\n[flow]\ninitial = \"rest\"\n";
@@ -519,7 +498,7 @@ TEST(ConfigErrors, MapMarginBelongsToTheReferenceMap) {
   expect_error("[[solid]]\nb_extension = 1\n", {"solid[0].b_extension"});
   expect_error("[[solid]]\nmodel = \"reference-map\"\nmap_margin = -0.1\n", {"solid[0].map_margin = -0.1", "[0, 1]"});
   // the relaxation acts on the ramp's cells: refused without a ramp, for other models, below 0
-  expect_error("[[solid]]\nmodel = \"reference-map\"\nmap_ramp = 0\nmap_relax_time = 0.05\n",
+  expect_error("[[solid]]\nmodel = \"reference-map\"\nmap_relax_time = 0.05\n",
                {"solid[0].map_relax_time = 0.05", "map_ramp > 0"});
   expect_error("[[solid]]\nmodel = \"paper\"\nmap_relax_time = 0.05\n", {"solid[0].map_relax_time", "\"reference-map\""});
   expect_error("[[solid]]\nmodel = \"reference-map\"\nmap_ramp = 0.5\nmap_relax_time = -1\n",

@@ -9,11 +9,10 @@
 // small-deformation estimate omits (inertia at Re_p = shear_rate d^2 / nu = 18, the non-uniform
 // shear across the particle, the grid sampling of the shape moments: ~4e-4 for an exact
 // ellipsoid at this size, docs/REFERENCE_MAP.md). It fails when the map's surface layer is slaved
-// to the deeper cells (solid.map_margin = 0.5 without the ramp, or a ramp of 1 cell replacing the
-// labels every substep): the oscillation does not decay and D stays at 0.005-0.015 over t in
-// [0.7, 1], then grows to 0.15 (docs/REFERENCE_MAP.md, "The margin and the elastic oscillation").
-// Measured, max D over [0.7, 1]: 0.0042 with the default surface (ramp 0.5 relaxed over 0.05),
-// 0.0025 without a ramp, 0.0135 with map_margin = 0.5 and no ramp, 0.096 with map_ramp = 1.
+// to the deeper cells (solid.map_margin = 0.5): the oscillation does not decay and D stays at
+// 0.005-0.015 over t in [0.7, 1], then grows to 0.15 (docs/REFERENCE_MAP.md, "The margin and the
+// elastic oscillation"). Measured: max D over [0.7, 1] 0.0025 with the default (map_margin = 0),
+// 0.0135 with map_margin = 0.5, 0.0042 with the relaxed ramp (map_ramp = 0.5, map_relax_time = 0.05).
 #include <gtest/gtest.h>
 
 #include <algorithm>
