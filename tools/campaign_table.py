@@ -10,8 +10,9 @@ import argparse
 import csv
 import json
 import sys
-import tomllib
 from pathlib import Path
+
+from eulerfsi_plot import PlotError, read_config
 
 
 def rows_of(run):
@@ -34,11 +35,7 @@ def at(rows, t):
 
 def surface(run):
     """The first body's model and, for the reference map, its surface ramp, as the run resolved them."""
-    try:
-        with open(run / "config.resolved.toml", "rb") as f:
-            solid = tomllib.load(f).get("solid", [{}])[0]
-    except (OSError, tomllib.TOMLDecodeError):
-        return "-"
+    solid = (read_config(run / "config.resolved.toml").get("solid") or [{}])[0]
     model = solid.get("model")
     if model != "reference-map":
         return model or "-"
@@ -74,8 +71,13 @@ def main(argv=None):
             v = at(rows, t)
             cells.append("-" if v is None else f"{v[0]:.3f}, {v[1]:.3f}")
         osc = s.get("T_osc")
+        try:
+            body = surface(run)
+        except PlotError as e:  # an unreadable config.resolved.toml
+            print(f"error: {e}", file=sys.stderr)
+            return 2
         cells += [fmt(s.get("t_rev")), fmt(s.get("t_cen")),
-                  "-" if osc is None else f"{osc:.1f} ({s.get('oscillation_amplitude', 0.0):.4f})", surface(run)]
+                  "-" if osc is None else f"{osc:.1f} ({s.get('oscillation_amplitude', 0.0):.4f})", body]
         print("| " + " | ".join(cells) + " |")
     return 0
 

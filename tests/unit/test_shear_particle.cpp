@@ -144,9 +144,8 @@ TEST(ShearParticle, DISABLED_DeformationBecomesSteady) {
 // The reference map (solid.model = "reference-map") on the same case and grid, with the relaxed
 // surface ramp (map_ramp = 0.5, map_relax_time = 0.05: what stops the surface labels drifting in
 // low-Re shear; not the default, which suits inertial flows: docs/REFERENCE_MAP.md, "Ramp 0.5 with
-// relax time 0.05"). Its psi is derived from
-// the carried reference map, so tank-treading does not smear it: the error budget above loses its
-// transport part. Budget relative to theory at Ca = 0.1: theory remainder 3.1 % (the known tilt
+// relax time 0.05"). Its psi is derived from the carried reference map, so tank-treading does not
+// smear it: the error budget above loses its transport part. Budget relative to theory at Ca = 0.1: theory remainder 3.1 % (the known tilt
 // term; doubled for neo-Hookean terms: 6.25 % is the bound, the measured value is what the 5 %
 // below reflects), confinement and images 3 %, inertia 1 %; so D within 5 % and the inclination
 // within 0.03 rad of 0.660 (0.03 = the O(Ca^3) remainder, (3+2 lambda)^3 Ca^3 / 48 ~ 3e-3, plus the
