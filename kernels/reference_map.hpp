@@ -300,6 +300,10 @@ struct ExtrapolationSweep {
   // The last sweep: a cell with no known cell among its 6 face neighbours is only marked
   // (pending_level) and fitted later, if a WENO stencil will read it (DeferredFits).
   bool defer_off_axis = false;
+  // Whether the solid cells weigh surface_weight in the fits (solid.map_ramp_in_extension); false:
+  // every known cell weighs 1, so the extension continues the surface layer's own motion (a stiff
+  // sphere's elastic oscillation at Re = 400 grows when it follows the deeper cells instead)
+  bool ramp_weights = true;
 
   // How far a fit is trusted, from its conditioning cond = min(det A / (tr A / 3)^3, schur / S): 1
   // at or above kFitTrusted, 0 at or below kFitUntrusted, a smoothstep in cond between (fit_value
@@ -413,7 +417,7 @@ struct ExtrapolationSweep {
   // full weight, which is as exact for a rigid motion; to the weighted mean only where no linear fit
   // exists (a rotating body's map has gradients of order 1: a mean beside it inverts the map).
   KOKKOS_INLINE_FUNCTION void fit_value(int i, int j, int k, double value[3]) const {
-    const Fit f = weighted_fit(i, j, k, true);
+    const Fit f = weighted_fit(i, j, k, ramp_weights);
     if (f.trust >= 1.0) {
       for (int d = 0; d < 3; ++d) value[d] = f.value[d];
       return;
@@ -490,12 +494,12 @@ struct ExtrapolationSweep {
 };
 
 // defer_off_axis: the last sweep, whose cells without a known face neighbour wait for
-// finish_deferred_fits().
+// finish_deferred_fits(). ramp_weights: ExtrapolationSweep::ramp_weights.
 inline void extrapolation_sweep(const Vector3& q, const WindowField& level, const WindowField& weight, int sweep,
-                                const Box& box, bool defer_off_axis = false) {
+                                const Box& box, bool defer_off_axis = false, bool ramp_weights = true) {
   if (!same_window(q, level) || !same_window(weight, level))
     throw std::logic_error("extrapolation_sweep: q, its level and weight are on different windows");
-  for_each_row("eulerfsi::refmap::extrapolate", box, ExtrapolationSweep{q, level, weight, double(sweep), defer_off_axis});
+  for_each_row("eulerfsi::refmap::extrapolate", box, ExtrapolationSweep{q, level, weight, double(sweep), defer_off_axis, ramp_weights});
 }
 
 // The surface ramp's solid cells (surface_weight < 1) blend their carried map with the fit through
@@ -560,9 +564,9 @@ struct DeferredFits {
 };
 
 inline void finish_deferred_fits(const Vector3& q, const WindowField& level, const WindowField& weight,
-                                 const WindowField& psi, int last_sweep, const Box& box) {
+                                 const WindowField& psi, int last_sweep, const Box& box, bool ramp_weights = true) {
   if (!same_window(q, level)) throw std::logic_error("finish_deferred_fits: q and its level are on different windows");
-  for_each_cell("eulerfsi::refmap::deferred_fits", box, DeferredFits{ExtrapolationSweep{q, level, weight, double(last_sweep)}, psi});
+  for_each_cell("eulerfsi::refmap::deferred_fits", box, DeferredFits{ExtrapolationSweep{q, level, weight, double(last_sweep), false, ramp_weights}, psi});
 }
 
 // psi and B from the map on the known cells whose central differences read known cells

@@ -275,7 +275,8 @@ void ReferenceMapModel::extrapolate(const Box& region) {
   solid_box_ = any ? solid : Box{};
   for (int sweep = 1; sweep <= kBand; ++sweep) {
     const Box reach = any ? intersection(region, solid.grown(sweep, grid_.all())) : Box{};
-    if (!reach.empty()) kernels::extrapolation_sweep(q_, level_, weight_, sweep, reach, sweep == kBand);
+    if (!reach.empty()) kernels::extrapolation_sweep(q_, level_, weight_, sweep, reach, sweep == kBand,
+                                                        cfg_solid_.map_ramp_in_extension);
     if (sweep == kBand) last_sweep_box_ = reach;
     // every rank exchanges, with or without a body: the halo exchange is collective
     fill_map_ghosts(region);
@@ -287,7 +288,8 @@ void ReferenceMapModel::extrapolate(const Box& region) {
 // substep's WENO5 stencils read them (kernels::DeferredFits). psi's ghosts are filled, so a cell
 // next to a slab end sees the advected cells across it.
 void ReferenceMapModel::finish_extrapolation(const SolidBody& body, const Box& region) {
-  if (!last_sweep_box_.empty()) kernels::finish_deferred_fits(q_, level_, weight_, body.psi, kBand, last_sweep_box_);
+  if (!last_sweep_box_.empty()) kernels::finish_deferred_fits(q_, level_, weight_, body.psi, kBand, last_sweep_box_,
+                                                                 cfg_solid_.map_ramp_in_extension);
   fill_map_ghosts(region);
   fill_level(region);
 }
