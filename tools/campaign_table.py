@@ -40,7 +40,11 @@ def surface(run):
     if model != "reference-map":
         return model or "-"
     ramp = solid.get("map_ramp", 0.0)
-    return f"map, ramp {ramp:g}, relax {solid.get('map_relax_time', 0.0):g}" if ramp > 0 else "map, no ramp"
+    if not ramp > 0:
+        return "map, no ramp"
+    # a run resolved before the key existed had the ramp's weights in the extension
+    weighted = ", weighted fits" if solid.get("map_ramp_in_extension", True) else ""
+    return f"map, ramp {ramp:g}, relax {solid.get('map_relax_time', 0.0):g}{weighted}"
 
 
 def fmt(x, digits=2):

@@ -133,14 +133,20 @@ void compare(const test::CoupledCase& a, const WindowField& fa, const WindowFiel
 
 }  // namespace
 
-// (case: 0 pipe, 1 channel, 2 windows; solid.map_ramp in cells)
-class ActiveBox : public ::testing::TestWithParam<std::tuple<int, double>> {};
+// (case: 0 pipe, 1 channel, 2 windows; surface: 0 no ramp, 1 solid.map_ramp = 0.25 replacing, its
+// weights in the extension, 2 a case file's default: 0.5 relaxed over 0.05, the extension at full weight)
+class ActiveBox : public ::testing::TestWithParam<std::tuple<int, int>> {};
 
 TEST_P(ActiveBox, SameFieldsAsTheWholeSlab) {
   const int which = std::get<0>(GetParam());
-  const double ramp = std::get<1>(GetParam());
+  const int surface = std::get<1>(GetParam());
   CaseConfig cfg = which == 0 ? two_spheres() : which == 1 ? spheres_at_wall_and_z_boundary() : spheres_on_windows();
-  for (auto& s : cfg.solids) s.map_ramp = ramp;
+  const double ramp = surface == 0 ? 0.0 : surface == 1 ? 0.25 : 0.5;
+  for (auto& s : cfg.solids) {
+    s.map_ramp = ramp;
+    s.map_relax_time = surface == 2 ? 0.05 : 0.0;
+    s.map_ramp_in_extension = surface != 2;
+  }
   const bool one_thread = ExecSpace().concurrency() == 1;
   if (ramp > 0.0 && !one_thread) GTEST_SKIP() << "the surface ramp is compared bit for bit on one thread per rank";
   const double tolerance = one_thread ? 0.0 : 1e-10;
@@ -194,4 +200,4 @@ TEST_P(ActiveBox, SameFieldsAsTheWholeSlab) {
                   body.psi.window().size(), boxed.grid.all().size());
 }
 
-INSTANTIATE_TEST_SUITE_P(PipeAndChannel, ActiveBox, ::testing::Combine(::testing::Values(0, 1, 2), ::testing::Values(0.0, 0.25)));
+INSTANTIATE_TEST_SUITE_P(PipeAndChannel, ActiveBox, ::testing::Combine(::testing::Values(0, 1, 2), ::testing::Values(0, 1, 2)));

@@ -44,10 +44,12 @@ want=$($py -c "import csv,sys; r=[x for x in csv.DictReader(open(sys.argv[1])) i
 grep -q "^| re200_we0.5 | .* | $want |" "$work/last.log" && echo "ok: campaign_table r/R at t = 10 ($want)" ||
   { fail "campaign_table: r/R, D at t = 10 is not $want"; cat "$work/last.log"; }
 # the last column names the model and the map's surface as the run resolved them
-cp -r "$R/re400_we4" "$work/map_run" && printf 'model = "reference-map"\nmap_ramp = 0.5\nmap_relax_time = 0.05\n' >> "$work/map_run/config.resolved.toml"
+cp -r "$R/re400_we4" "$work/map_run" && printf 'model = "reference-map"\nmap_ramp = 0.5\nmap_relax_time = 0.05\nmap_ramp_in_extension = false\n' >> "$work/map_run/config.resolved.toml"
+cp -r "$R/re400_we4" "$work/weighted_run" && printf 'model = "reference-map"\nmap_ramp = 0.5\nmap_relax_time = 0.05\n' >> "$work/weighted_run/config.resolved.toml"
 cp -r "$R/re400_we4" "$work/no_ramp_run" && printf 'model = "reference-map"\nmap_ramp = 0.0\n' >> "$work/no_ramp_run/config.resolved.toml"
-run $table "$work/map_run" "$work/no_ramp_run"
+run $table "$work/map_run" "$work/weighted_run" "$work/no_ramp_run"
 grep -q "^| map_run | .* | map, ramp 0.5, relax 0.05 |$" "$work/last.log" && grep -q "^| no_ramp_run | .* | map, no ramp |$" "$work/last.log" &&
+  grep -q "^| weighted_run | .* | map, ramp 0.5, relax 0.05, weighted fits |$" "$work/last.log" &&
   echo "ok: campaign_table surface column" || { fail "campaign_table surface column"; cat "$work/last.log"; }
 expect_rc 2 $table "$work/no_such_run"
 

@@ -69,6 +69,9 @@ void expect_same(const CaseConfig& a, const CaseConfig& b) {
     EXPECT_EQ(a.solids[i].initial_velocity, b.solids[i].initial_velocity);
     EXPECT_EQ(a.solids[i].model, b.solids[i].model);
     EXPECT_EQ(a.solids[i].map_margin, b.solids[i].map_margin);
+    EXPECT_EQ(a.solids[i].map_ramp, b.solids[i].map_ramp);
+    EXPECT_EQ(a.solids[i].map_relax_time, b.solids[i].map_relax_time);
+    EXPECT_EQ(a.solids[i].map_ramp_in_extension, b.solids[i].map_ramp_in_extension);
     EXPECT_EQ(a.solids[i].b_extension, b.solids[i].b_extension);
   }
 }
@@ -498,11 +501,36 @@ TEST(ConfigErrors, MapMarginBelongsToTheReferenceMap) {
   expect_error("[[solid]]\nb_extension = 1\n", {"solid[0].b_extension"});
   expect_error("[[solid]]\nmodel = \"reference-map\"\nmap_margin = -0.1\n", {"solid[0].map_margin = -0.1", "[0, 1]"});
   // the relaxation acts on the ramp's cells: refused without a ramp, for other models, below 0
-  expect_error("[[solid]]\nmodel = \"reference-map\"\nmap_relax_time = 0.05\n",
+  expect_error("[[solid]]\nmodel = \"reference-map\"\nmap_ramp = 0\nmap_relax_time = 0.05\n",
                {"solid[0].map_relax_time = 0.05", "map_ramp > 0"});
+  // the ramp's weights in the extension: the map's, and only with a ramp
+  expect_error("[[solid]]\nmodel = \"paper\"\nmap_ramp_in_extension = true\n",
+               {"solid[0].map_ramp_in_extension = true", "\"reference-map\""});
+  expect_error("[[solid]]\nmodel = \"reference-map\"\nmap_ramp = 0\nmap_ramp_in_extension = true\n",
+               {"solid[0].map_ramp_in_extension = true", "map_ramp > 0"});
+  expect_error("[[solid]]\nmap_ramp_in_extension = 1\n", {"solid[0].map_ramp_in_extension"});
   expect_error("[[solid]]\nmodel = \"paper\"\nmap_relax_time = 0.05\n", {"solid[0].map_relax_time", "\"reference-map\""});
   expect_error("[[solid]]\nmodel = \"reference-map\"\nmap_ramp = 0.5\nmap_relax_time = -1\n",
                {"solid[0].map_relax_time = -1", ">= 0"});
+}
+
+// A case file's map body gets the relaxed surface (half a cell of ramp relaxed over 0.05, the
+// extension at full weight); without a ramp nothing relaxes; the paper model has none.
+TEST(Config, ReferenceMapSurfaceDefaults) {
+  const CaseConfig c = parse_case_string("[[solid]]\n[[solid]]\ncenter = [0.5, 0, 0]\nmap_ramp = 0\n"
+                                         "[[solid]]\ncenter = [1, 0, 0]\nmodel = \"paper\"\n"
+                                         "[[solid]]\ncenter = [1.5, 0, 0]\nmap_relax_time = 0.2\nmap_ramp_in_extension = true\n");
+  ASSERT_EQ(c.solids.size(), 4u);
+  EXPECT_EQ(c.solids[0].map_ramp, 0.5);
+  EXPECT_EQ(c.solids[0].map_relax_time, 0.05);
+  EXPECT_FALSE(c.solids[0].map_ramp_in_extension);
+  EXPECT_EQ(c.solids[1].map_ramp, 0.0);
+  EXPECT_EQ(c.solids[1].map_relax_time, 0.0);
+  EXPECT_EQ(c.solids[2].map_ramp, 0.0);
+  EXPECT_EQ(c.solids[2].map_relax_time, 0.0);
+  EXPECT_EQ(c.solids[3].map_relax_time, 0.2);
+  EXPECT_TRUE(c.solids[3].map_ramp_in_extension);
+  expect_round_trip(c);
 }
 
 // solver.fft_planning: estimate by default, measure on request, written back by the round trip;
