@@ -644,7 +644,9 @@ void read_solids(const Reader& r, const toml::table& root, const DomainConfig& d
                                         s + ".map_ramp, so it needs model = \"reference-map\" and map_ramp > 0 "
                                         "(set map_ramp, or remove it)");
     r.get(t, s, "map_ramp_in_extension", c.map_ramp_in_extension);
-    if (t->get("map_ramp_in_extension") && (c.model != SolidModelKind::ReferenceMap || !(c.map_ramp > 0)))
+    // false without a ramp is what a resolved file of a map body with map_ramp = 0 says: allowed
+    if (t->get("map_ramp_in_extension") &&
+        (c.model != SolidModelKind::ReferenceMap || (c.map_ramp_in_extension && !(c.map_ramp > 0))))
       r.fail(s + ".map_ramp_in_extension", s + ".map_ramp_in_extension = " + (c.map_ramp_in_extension ? "true" : "false") +
                                                ": weighs the cells of " + s + ".map_ramp in the extension, so it needs "
                                                "model = \"reference-map\" and map_ramp > 0 (set map_ramp, or remove it)");
