@@ -623,10 +623,7 @@ void read_solids(const Reader& r, const toml::table& root, const DomainConfig& d
                                     ".model = \"reference-map\" only (set it to 0 or remove it)");
     // a case file's map bodies default to the relaxed surface (docs/REFERENCE_MAP.md, "The relaxed
     // surface"): half a cell of ramp, relaxed over 0.05 time units, the extension at full weight
-    if (c.model == SolidModelKind::ReferenceMap) {
-      c.map_ramp = kDefaultMapRamp;
-      c.map_ramp_in_extension = false;
-    }
+    if (c.model == SolidModelKind::ReferenceMap) c.map_ramp = kDefaultMapRamp;
     r.get(t, s, "map_ramp", c.map_ramp);
     r.require(c.map_ramp >= 0 && c.map_ramp <= 2, t, s, "map_ramp",
               "must be in [0, 2] (cells below the solid's edge over which a cell's weight in the extension rises "
