@@ -567,11 +567,6 @@ void read_output(const Reader& r, const toml::table& root, OutputConfig& o) {
   }
 }
 
-// A case file's reference-map surface (solid.map_ramp in cells, solid.map_relax_time in the case's
-// time unit): the Stokes-limit stiff shear within 1 % of theory at 8 and 12 cells per d, a stiff
-// sphere's elastic oscillation damped at Re = 200 and 400 (docs/REFERENCE_MAP.md).
-constexpr double kDefaultMapRamp = 0.5, kDefaultMapRelaxTime = 0.05;
-
 void read_solids(const Reader& r, const toml::table& root, const DomainConfig& d, std::vector<SolidConfig>& out) {
   const toml::node* n = root.get("solid");
   if (!n) return;

@@ -86,6 +86,12 @@ enum class SolidModelKind { Paper, ReferenceMap, Rigid };
 // the cross-section (y, z held; free along x and free to rotate). src/solid/rigid_model.hpp.
 enum class SolidConstraint { None, Fixed, Radial };
 
+// A case file's reference-map surface (solid.map_ramp in cells, solid.map_relax_time in the case's
+// time unit; the struct's own defaults are the surface without a ramp): the Stokes-limit stiff
+// shear within 1 % of theory at 8 and 12 cells per d, a stiff sphere's elastic oscillation damped
+// at Re = 200 and 400 (docs/REFERENCE_MAP.md, "The relaxed surface").
+constexpr double kDefaultMapRamp = 0.5, kDefaultMapRelaxTime = 0.05;
+
 struct SolidConfig {
   SolidShape shape = SolidShape::Sphere;
   double diameter = 0.2;
