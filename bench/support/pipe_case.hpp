@@ -1,7 +1,7 @@
 #pragma once
 // The benchmark case: a laminar pipe at Re = 100 with cubic cells, optionally one soft
 // particle (d = 0.2, We = 1) at r/R = 0.2828 as in the paper, carried by the paper's model or the
-// reference map (with a case file's default surface, kDefaultMapRamp and kDefaultMapRelaxTime).
+// reference map (with a case file's default surface, use_default_map_surface).
 #include "config/case_config.hpp"
 
 namespace eulerfsi::bench {
@@ -32,10 +32,7 @@ inline CaseConfig pipe_case_bodies(int nx, int ny, int nz, int count, double d,
     s.center = {(b + 0.5) * cfg.domain.length[0] / count, r * quarter[b % 4][0], r * quarter[b % 4][1]};
     s.We = 1.0;
     s.model = model;
-    if (model == SolidModelKind::ReferenceMap) {  // what a case file's map body gets by default
-      s.map_ramp = kDefaultMapRamp;
-      s.map_relax_time = kDefaultMapRelaxTime;
-    }
+    if (model == SolidModelKind::ReferenceMap) use_default_map_surface(s);
     cfg.solids.push_back(s);
   }
   return cfg;

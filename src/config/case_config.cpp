@@ -567,6 +567,19 @@ void read_output(const Reader& r, const toml::table& root, OutputConfig& o) {
   }
 }
 
+// solid.map_ramp in cells, solid.map_relax_time in the case's time unit
+constexpr double kDefaultMapRamp = 0.5, kDefaultMapRelaxTime = 0.05;
+
+}  // namespace
+
+void use_default_map_surface(SolidConfig& solid) {
+  solid.map_ramp = kDefaultMapRamp;
+  solid.map_relax_time = kDefaultMapRelaxTime;
+  solid.map_ramp_in_extension = false;
+}
+
+namespace {
+
 void read_solids(const Reader& r, const toml::table& root, const DomainConfig& d, std::vector<SolidConfig>& out) {
   const toml::node* n = root.get("solid");
   if (!n) return;
@@ -616,9 +629,8 @@ void read_solids(const Reader& r, const toml::table& root, const DomainConfig& d
     if (c.model != SolidModelKind::ReferenceMap && c.map_margin > 0)
       r.fail(s + ".map_margin", s + ".map_margin = " + fmt_double(c.map_margin) + ": applies to " + s +
                                     ".model = \"reference-map\" only (set it to 0 or remove it)");
-    // a case file's map bodies default to the relaxed surface (docs/REFERENCE_MAP.md, "The relaxed
-    // surface"): half a cell of ramp, relaxed over 0.05 time units, the extension at full weight
-    if (c.model == SolidModelKind::ReferenceMap) c.map_ramp = kDefaultMapRamp;
+    // a case file's map bodies default to the relaxed surface; no ramp, nothing to relax
+    if (c.model == SolidModelKind::ReferenceMap) use_default_map_surface(c);
     r.get(t, s, "map_ramp", c.map_ramp);
     r.require(c.map_ramp >= 0 && c.map_ramp <= 2, t, s, "map_ramp",
               "must be in [0, 2] (cells below the solid's edge over which a cell's weight in the extension rises "
@@ -626,7 +638,7 @@ void read_solids(const Reader& r, const toml::table& root, const DomainConfig& d
     if (c.model != SolidModelKind::ReferenceMap && t->get("map_ramp"))
       r.fail(s + ".map_ramp", s + ".map_ramp = " + fmt_double(c.map_ramp) + ": applies to " + s +
                                   ".model = \"reference-map\" only (remove it)");
-    if (c.model == SolidModelKind::ReferenceMap && c.map_ramp > 0) c.map_relax_time = kDefaultMapRelaxTime;
+    if (!(c.map_ramp > 0)) c.map_relax_time = 0.0;
     r.get(t, s, "map_relax_time", c.map_relax_time);
     r.require(c.map_relax_time >= 0, t, s, "map_relax_time",
               "must be >= 0 (the time over which the surface ramp's cells relax towards the extension's fit; "

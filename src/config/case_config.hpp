@@ -86,12 +86,6 @@ enum class SolidModelKind { Paper, ReferenceMap, Rigid };
 // the cross-section (y, z held; free along x and free to rotate). src/solid/rigid_model.hpp.
 enum class SolidConstraint { None, Fixed, Radial };
 
-// A case file's reference-map surface (solid.map_ramp in cells, solid.map_relax_time in the case's
-// time unit; the struct's own defaults are the surface without a ramp): the Stokes-limit stiff
-// shear within 1 % of theory at 8 and 12 cells per d, a stiff sphere's elastic oscillation damped
-// at Re = 200 and 400 (docs/REFERENCE_MAP.md, "The relaxed surface").
-constexpr double kDefaultMapRamp = 0.5, kDefaultMapRelaxTime = 0.05;
-
 struct SolidConfig {
   SolidShape shape = SolidShape::Sphere;
   double diameter = 0.2;
@@ -119,6 +113,13 @@ struct CaseConfig {
   std::vector<SolidConfig> solids;
   std::string source;  // the file it came from
 };
+
+// The surface a case file's reference-map body gets unless it sets its keys (SolidConfig's own
+// defaults are the surface without a ramp): half a cell of ramp relaxed over 0.05 time units, the
+// extension at full weight. The Stokes-limit stiff shear within 1 % of theory at 8 and 12 cells per
+// d, a stiff sphere's elastic oscillation damped at Re = 200 and 400 (docs/REFERENCE_MAP.md, "The
+// relaxed surface"). The parser and the benchmarks both take it from here.
+void use_default_map_surface(SolidConfig& solid);
 
 // Reads and validates a case file, applying `--set section.key=value` overrides (value in TOML
 // syntax, e.g. flow.Re=200, domain.cells=[32,16,16], output.dir="runs/x"; a bare word that is not
