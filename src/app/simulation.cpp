@@ -194,6 +194,12 @@ class Simulation {
     return f;
   }
 
+  // The checkpoint's name of value q of ParticleTracker::force_impulse().
+  static std::string impulse_key(size_t q) {
+    const size_t n = q / ParticleTracker::kImpulseValues, v = q % ParticleTracker::kImpulseValues;
+    return "solid" + std::to_string(n) + ".force_impulse." + std::to_string(v);
+  }
+
   void write_restart_file() {
     CheckpointMeta meta;
     meta.step = step_;
@@ -205,6 +211,8 @@ class Simulation {
     meta.scalars["frame.offset"] = flow_.frame_offset();
     const auto xs = tracker_.unwrapped_x();
     for (size_t n = 0; n < xs.size(); ++n) meta.scalars["solid" + std::to_string(n) + ".x_unwrapped"] = xs[n];
+    const auto impulse = tracker_.force_impulse();
+    for (size_t q = 0; q < impulse.size(); ++q) meta.scalars[impulse_key(q)] = impulse[q];
     for (const auto& [key, v] : solids_.checkpoint_scalars()) meta.scalars[key] = v;
     std::vector<CheckpointSource> fields;
     for (const auto& [name, f] : flow_fields()) fields.push_back({name, f, 0.0});
@@ -237,6 +245,11 @@ class Simulation {
     for (size_t n = 0; n < solids_.bodies().size(); ++n)
       xs.push_back(meta.scalars.at("solid" + std::to_string(n) + ".x_unwrapped"));
     tracker_.set_unwrapped_x(xs);
+    // the forces' interval since the last row (checkpoints before interval means had none: 0)
+    std::vector<double> impulse(solids_.bodies().size() * ParticleTracker::kImpulseValues, 0.0);
+    for (size_t q = 0; q < impulse.size(); ++q)
+      if (meta.scalars.count(impulse_key(q))) impulse[q] = meta.scalars.at(impulse_key(q));
+    tracker_.set_force_impulse(impulse);
     // the stored velocity is relative to the stored frame; a new fixed frame_velocity shifts it
     auto scalar = [&meta](const char* key) { return meta.scalars.count(key) ? meta.scalars.at(key) : 0.0; };
     flow_.restore_frame(scalar("frame.velocity"), scalar("frame.offset"));
@@ -281,7 +294,11 @@ class Simulation {
       flow_csv_.row({double(step_), t_, dt, last_.cfl, last_.bulk_u, last_.dpdx, last_.max_div, last_.kinetic_energy,
                      flow_.frame_velocity(), flow_.frame_offset()});
     }
-    if (!solids_.empty()) write_particles(row);
+    if (!solids_.empty()) {
+      // a row reports the mean force over the steps since the previous row: every step adds its own
+      if (!initial && !row) tracker_.accumulate_forces(solids_, flow_.state(), frame(), dt);
+      write_particles(row, initial ? 0.0 : dt);
+    }
     if (o.profiles_every > 0 && step_ % o.profiles_every == 0) {
       char name[64];
       std::snprintf(name, sizeof(name), "/profiles/%08ld.csv", step_);
@@ -291,11 +308,12 @@ class Simulation {
   }
 
   // Particle rows every `every` steps; a cross-section at each requested time once it is reached.
-  void write_particles(bool row) {
+  // dt: the step just taken (0 at the start), whose forces close a row's interval.
+  void write_particles(bool row, double dt) {
     const auto& times = cfg_.output.shape_times;
     const bool shape_due = next_shape_ < times.size() && t_ >= times[next_shape_] - 1e-12;
     if (!row && !shape_due) return;
-    const auto states = tracker_.measure(solids_, flow_.state(), frame());
+    const auto states = tracker_.measure(solids_, flow_.state(), frame(), row ? dt : 0.0);
     if (row)
       for (size_t n = 0; n < states.size(); ++n) particle_csv_.row(particle_row(step_, t_, int(n), states[n]));
     if (shape_due) {

@@ -52,6 +52,7 @@ void symmetric_eigen3(const double a_in[3][3], double values[3], double vectors[
 ParticleTracker::ParticleTracker(const CaseConfig& cfg, const Grid& grid, const Comm& comm)
     : cfg_(cfg), grid_(grid), comm_(comm) {
   for (const auto& s : cfg.solids) last_x_.push_back(s.center[0]);
+  impulse_.assign(cfg.solids.size(), {});
 }
 
 namespace {
@@ -87,6 +88,49 @@ constexpr double kNarrowEdgeFraction = 2.0 / 3.0;
 Box body_box(const SolidBody& body, const Grid& grid) { return body.model ? body.model->active_box() : grid.interior(); }
 
 }  // namespace
+
+void ParticleTracker::force_vectors(const SolidBody& body, const FlowState& flow, const GridFrame& frame,
+                                    double out[kForceValues]) const {
+  const Box box = body_box(body, grid_);
+  // both decompositions take the pressure that moved u over the last step (sum alpha_s p_s), not
+  // the last substep's, which extrapolates beyond the step
+  const SolidModel::StepStart start = body.model ? body.model->psi_at_step_start() : SolidModel::StepStart{};
+  auto budget = kernels::body_momentum(body.psi, flow.p_step, flow.vel, body.b, body.b_prev, body.G, 1.0 / cfg_.flow.Re,
+                                       body.mu_s, grid_.h, box, start.psi, start.inv_dt);
+  auto paper = kernels::body_forces(body.psi, flow.p_step, flow.vel, body.b, body.G, body.mu_s, frame.velocity,
+                                    grid_.h, box);
+  double v[kForceValues];
+  const double* parts[9] = {budget.momentum, budget.pressure, budget.inertia, budget.viscous, budget.elastic,
+                            paper.pressure,  paper.inertia,   paper.viscous,  paper.elastic};
+  for (int q = 0; q < 9; ++q)
+    for (int a = 0; a < 3; ++a) v[3 * q + a] = parts[q][a];
+  sum_all(comm_, v);
+  for (int q = 0; q < kForceValues; ++q) out[q] = v[q];
+}
+
+void ParticleTracker::accumulate_forces(const SolidPhase& solids, const FlowState& flow, const GridFrame& frame,
+                                        double dt) {
+  for (size_t n = 0; n < solids.bodies().size(); ++n) {
+    double v[kForceValues];
+    force_vectors(solids.bodies()[n], flow, frame, v);
+    for (int q = 0; q < kImpulseValues - 1; ++q) impulse_[n][q] += dt * v[3 + q];
+    impulse_[n][kImpulseValues - 1] += dt;
+  }
+}
+
+std::vector<double> ParticleTracker::force_impulse() const {
+  std::vector<double> out;
+  for (const auto& a : impulse_) out.insert(out.end(), a.begin(), a.end());
+  return out;
+}
+
+void ParticleTracker::set_force_impulse(const std::vector<double>& values) {
+  for (size_t n = 0; n < impulse_.size(); ++n)
+    for (int q = 0; q < kImpulseValues; ++q) {
+      const size_t at = n * kImpulseValues + q;
+      impulse_[n][q] = at < values.size() ? values[at] : 0.0;
+    }
+}
 
 double ParticleTracker::mean_x_velocity(const SolidPhase& solids, const FlowState& flow, size_t body,
                                         double frame_velocity) const {
@@ -129,7 +173,7 @@ void ParticleTracker::sharp_shape_moments(const SolidBody& body, const double re
 }
 
 std::vector<ParticleState> ParticleTracker::measure(const SolidPhase& solids, const FlowState& flow,
-                                                    const GridFrame& frame) {
+                                                    const GridFrame& frame, double last_dt) {
   const kernels::CellCentres xc{{grid_.centre(0, 0), grid_.centre(1, 0), grid_.centre(2, 0)},
                                 {grid_.h[0], grid_.h[1], grid_.h[2]}};
   const double lx = grid_.length[0];
@@ -146,6 +190,7 @@ std::vector<ParticleState> ParticleTracker::measure(const SolidPhase& solids, co
     sum_all(comm_, whole);
     s.volume = whole[0] * grid_.h[0] * grid_.h[1] * grid_.h[2];
     if (s.volume <= 0.0) {
+      if (last_dt > 0.0) impulse_[n] = {};  // the next row's interval starts here
       out.push_back(s);
       continue;
     }
@@ -240,29 +285,18 @@ std::vector<ParticleState> ParticleTracker::measure(const SolidPhase& solids, co
       s.angle = 0.0;
       for (double& a : s.semi_axes) a = 0.5 * body.cfg.diameter;
     }
-    // both decompositions take the pressure that moved u over the last step (sum alpha_s p_s), not
-    // the last substep's, which extrapolates beyond the step
-    auto forces = kernels::body_forces(body.psi, flow.p_step, flow.vel, body.b, body.G, body.mu_s, frame.velocity,
-                                       grid_.h, box);
-    double f[12];
-    for (int a = 0; a < 3; ++a) {
-      f[a] = forces.pressure[a];
-      f[3 + a] = forces.inertia[a];
-      f[6 + a] = forces.viscous[a];
-      f[9 + a] = forces.elastic[a];
+    double v[kForceValues];
+    force_vectors(body, flow, frame, v);
+    if (last_dt > 0.0) {  // a row: the mean over the interval that this step closes
+      auto& acc = impulse_[n];
+      for (int q = 0; q < kImpulseValues - 1; ++q) acc[q] += last_dt * v[3 + q];
+      acc[kImpulseValues - 1] += last_dt;
+      for (int q = 0; q < kImpulseValues - 1; ++q) v[3 + q] = acc[q] / acc[kImpulseValues - 1];
+      acc = {};
     }
-    sum_all(comm_, f);
-    for (int term = 0; term < 4; ++term) s.force_paper[term] = radial_part(f + 3 * term, s.radial_dir);
-    const SolidModel::StepStart start = body.model ? body.model->psi_at_step_start() : SolidModel::StepStart{};
-    auto budget = kernels::body_momentum(body.psi, flow.p_step, flow.vel, body.b, body.b_prev, body.G, 1.0 / cfg_.flow.Re,
-                                         body.mu_s, grid_.h, box, start.psi, start.inv_dt);
-    double g[15];
-    double* parts[5] = {budget.momentum, budget.pressure, budget.inertia, budget.viscous, budget.elastic};
-    for (int q = 0; q < 5; ++q)
-      for (int a = 0; a < 3; ++a) g[3 * q + a] = parts[q][a];
-    sum_all(comm_, g);
-    s.momentum_r = radial_part(g, s.radial_dir);
-    for (int term = 0; term < 4; ++term) s.force[term] = radial_part(g + 3 * (term + 1), s.radial_dir);
+    s.momentum_r = radial_part(v, s.radial_dir);
+    for (int term = 0; term < 4; ++term) s.force[term] = radial_part(v + 3 * (term + 1), s.radial_dir);
+    for (int term = 0; term < 4; ++term) s.force_paper[term] = radial_part(v + 15 + 3 * term, s.radial_dir);
     out.push_back(s);
   }
   return out;

@@ -1,6 +1,7 @@
 #pragma once
 // What the paper reports about each particle, per output step: unwrapped centroid, radial
 // position, velocity, volume, Taylor deformation and orientation, radial force and its parts.
+#include <array>
 #include <string>
 #include <vector>
 
@@ -48,8 +49,20 @@ class ParticleTracker {
  public:
   ParticleTracker(const CaseConfig& cfg, const Grid& grid, const Comm& comm);
   // Measures every body in the laboratory frame; keeps the unwrapped x-centroid continuous
-  // between calls.
-  std::vector<ParticleState> measure(const SolidPhase& solids, const FlowState& flow, const GridFrame& frame = {});
+  // between calls. last_dt > 0 (an output row): the forces of the step just taken, last_dt long,
+  // close the interval since the previous row and the state reports the interval's mean forces
+  // (accumulate_forces), which then start anew; 0: the last step's forces alone.
+  std::vector<ParticleState> measure(const SolidPhase& solids, const FlowState& flow, const GridFrame& frame = {},
+                                     double last_dt = 0.0);
+  // The forces of the step just taken, dt long, join the impulse of the interval that the next
+  // row reports as its mean: a row then neither samples one step's spike (a cell joining or
+  // leaving the solid, docs/REFERENCE_MAP.md) nor loses the impulse between rows, so the rows'
+  // sum of F dt is the change of P_r, as the steps' is.
+  void accumulate_forces(const SolidPhase& solids, const FlowState& flow, const GridFrame& frame, double dt);
+  // The interval's impulse so far (kImpulseValues per body), for checkpoints.
+  static constexpr int kImpulseValues = 25;
+  std::vector<double> force_impulse() const;
+  void set_force_impulse(const std::vector<double>& values);
   // Mean x-velocity of one body in the laboratory (two reductions; for a frame that follows it).
   double mean_x_velocity(const SolidPhase& solids, const FlowState& flow, size_t body, double frame_velocity) const;
   // The unwrapped x of each body in the grid's frame so far (for checkpoints).
@@ -57,6 +70,11 @@ class ParticleTracker {
   void set_unwrapped_x(std::vector<double> x) { last_x_ = std::move(x); }
 
  private:
+  // The body's momentum (3) and the force vectors that change it (budget: pressure, inertia,
+  // viscous, elastic, 12) and the paper's decomposition (12), summed over the ranks.
+  static constexpr int kForceValues = 27;
+  void force_vectors(const SolidBody& body, const FlowState& flow, const GridFrame& frame,
+                     double out[kForceValues]) const;
   // Volume, first and second moments about `ref` of the body's sharp shape (edge width -> 0).
   void sharp_shape_moments(const SolidBody& body, const double ref[3], const double period[3], double out[10]) const;
 
@@ -64,6 +82,9 @@ class ParticleTracker {
   Grid grid_;
   Comm comm_;
   std::vector<double> last_x_;  // unwrapped x-centroid at the previous measurement
+  // per body: sum of dt times the 24 force vectors of force_vectors (after the momentum) over the
+  // steps since the last row, then the sum of dt
+  std::vector<std::array<double, kImpulseValues>> impulse_;
 };
 
 // particle.csv columns, one row per body per output step.

@@ -24,6 +24,12 @@ foreach(np_case "1;particle_pipe" "2;particle_pipe_frame" "2;particle_pipe_refma
                    ${CMAKE_BINARY_DIR}/regression/restart_np${np}_${c} ${np})
   set_tests_properties(restart_bit_for_bit_np${np}_${c} PROPERTIES ENVIRONMENT "${EULERFSI_TEST_ENV}" PROCESSORS ${np})
 endforeach()
+# rows every 3 steps report the forces' mean since the previous row: a checkpoint (every 10 or 5
+# steps) falls inside an interval, whose impulse it must carry
+add_test(NAME restart_bit_for_bit_rows_every_3_np1_particle_pipe_refmap
+         COMMAND bash ${REG}/restart.sh $<TARGET_FILE:eulerfsi> ${REG}/cases/particle_pipe_refmap.toml
+                 ${CMAKE_BINARY_DIR}/regression/restart_every3_refmap 1 --set output.every=3)
+set_tests_properties(restart_bit_for_bit_rows_every_3_np1_particle_pipe_refmap PROPERTIES ENVIRONMENT "${EULERFSI_TEST_ENV}")
 # the same with FFTW_MEASURE plans, whose choices may differ between processes: the restart reuses
 # the wisdom stored beside the checkpoint (pressure on 1 rank; pressure and Helmholtz on 2)
 foreach(np_case "1;particle_pipe" "2;particle_pipe_implicit")

@@ -14,6 +14,7 @@
 // other sign: it points to the axis while the particle accelerates outwards.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -147,4 +148,54 @@ TEST(ParticleForce, ReferenceMapRadialForceChangesTheRadialMomentum) {
   report("reference map, grid following the particle", b);
   EXPECT_NEAR(b.integral, b.change, 0.01 * std::fabs(b.change));
   expect_force_follows_acceleration(b);
+}
+
+// An output row every few steps reports the mean force over the steps since the previous row
+// (ParticleTracker::accumulate_forces), so that its sum of F dt over the rows is the steps' own:
+// the dt-weighted mean of the per-step forces to round-off (the same kernels summed in another
+// order: 1e-12 of the largest term), P_r the row step's, and a step's spike is neither sampled
+// alone nor lost between rows.
+TEST(ParticleForce, ARowReportsTheMeanForceSinceThePreviousRow) {
+  CaseConfig cfg = test::small_case(Geometry::Pipe, 24, 24, 24, 1.0, 1.0, 1.0, 100.0, InitialFlow::Laminar);
+  SolidConfig sphere;
+  sphere.diameter = 0.3;
+  sphere.center = {0.5, 0.15, 0.0};
+  sphere.We = 1.0;
+  sphere.initial_velocity = InitialSolidVelocity::Fluid;
+  sphere.model = SolidModelKind::ReferenceMap;
+  cfg.solids.push_back(sphere);
+  test::CoupledCase run(cfg);
+  ParticleTracker rows(cfg, run.grid, run.comm);  // a row every `every` steps
+  constexpr int every = 4, steps = 24;
+  double t = 0.0, interval = 0.0, impulse[8] = {};
+  int checked = 0;
+  for (int n = 1; n <= steps; ++n) {
+    const double dt = run.flow.stable_dt(run.solids.max_wave_speed());
+    run.flow.advance(t, dt, &run.solids);
+    t += dt;
+    const ParticleState step = run.tracker.measure(run.solids, run.flow.state())[0];  // this step's forces
+    for (int q = 0; q < 4; ++q) {
+      impulse[q] += dt * step.force[q];
+      impulse[4 + q] += dt * step.force_paper[q];
+    }
+    interval += dt;
+    if (n % every != 0) {
+      rows.accumulate_forces(run.solids, run.flow.state(), GridFrame{}, dt);
+      continue;
+    }
+    const ParticleState row = rows.measure(run.solids, run.flow.state(), GridFrame{}, dt)[0];
+    double scale = 0.0;
+    for (double f : impulse) scale = std::max(scale, std::fabs(f / interval));
+    for (int q = 0; q < 4; ++q) {
+      EXPECT_NEAR(row.force[q], impulse[q] / interval, 1e-12 * scale) << "step " << n << ", term " << q;
+      EXPECT_NEAR(row.force_paper[q], impulse[4 + q] / interval, 1e-12 * scale) << "step " << n << ", term " << q;
+    }
+    EXPECT_DOUBLE_EQ(row.momentum_r, step.momentum_r);
+    // the interval's mean differs from its last step's force (else the test could not tell them apart)
+    EXPECT_GT(std::fabs(row.force_total() - step.force_total()), 1e-6 * scale);
+    interval = 0.0;
+    for (double& f : impulse) f = 0.0;
+    ++checked;
+  }
+  EXPECT_EQ(checked, steps / every);
 }
