@@ -24,7 +24,8 @@ struct ParticleState {
   double radial_dir[3] = {0, 1, 0};
   // Radial force that changes the radial momentum P_r = int psi u . e_r (e_r at this instant):
   // pressure, inertia (with the momentum psi's transport carries, int u_r dpsi/dt), viscous
-  // (mixture viscosity), elastic (the solver's stress divergence, interface included).
+  // (mixture viscosity), elastic (the solver's stress divergence, interface included). The last
+  // step's, or on an output row the mean over the steps since the previous row (measure).
   double force[4] = {0, 0, 0, 0};
   double momentum_r = 0.0;
   // The paper's eq. (force): pressure (as above), -int psi div(u u) at fixed laboratory points,
