@@ -90,7 +90,7 @@ Box body_box(const SolidBody& body, const Grid& grid) { return body.model ? body
 }  // namespace
 
 void ParticleTracker::force_vectors(const SolidBody& body, const FlowState& flow, const GridFrame& frame,
-                                    double out[kForceValues]) const {
+                                    double (&out)[kForceValues]) const {
   const Box box = body_box(body, grid_);
   // both decompositions take the pressure that moved u over the last step (sum alpha_s p_s), not
   // the last substep's, which extrapolates beyond the step
@@ -99,13 +99,16 @@ void ParticleTracker::force_vectors(const SolidBody& body, const FlowState& flow
                                        body.mu_s, grid_.h, box, start.psi, start.inv_dt);
   auto paper = kernels::body_forces(body.psi, flow.p_step, flow.vel, body.b, body.G, body.mu_s, frame.velocity,
                                     grid_.h, box);
-  double v[kForceValues];
   const double* parts[9] = {budget.momentum, budget.pressure, budget.inertia, budget.viscous, budget.elastic,
                             paper.pressure,  paper.inertia,   paper.viscous,  paper.elastic};
   for (int q = 0; q < 9; ++q)
-    for (int a = 0; a < 3; ++a) v[3 * q + a] = parts[q][a];
-  sum_all(comm_, v);
-  for (int q = 0; q < kForceValues; ++q) out[q] = v[q];
+    for (int a = 0; a < 3; ++a) out[3 * q + a] = parts[q][a];
+  sum_all(comm_, out);
+}
+
+void ParticleTracker::add_to_interval(size_t n, const double (&v)[kForceValues], double dt) {
+  for (int q = 0; q < kImpulseValues - 1; ++q) impulse_[n][q] += dt * v[3 + q];
+  impulse_[n][kImpulseValues - 1] += dt;
 }
 
 void ParticleTracker::accumulate_forces(const SolidPhase& solids, const FlowState& flow, const GridFrame& frame,
@@ -113,8 +116,7 @@ void ParticleTracker::accumulate_forces(const SolidPhase& solids, const FlowStat
   for (size_t n = 0; n < solids.bodies().size(); ++n) {
     double v[kForceValues];
     force_vectors(solids.bodies()[n], flow, frame, v);
-    for (int q = 0; q < kImpulseValues - 1; ++q) impulse_[n][q] += dt * v[3 + q];
-    impulse_[n][kImpulseValues - 1] += dt;
+    add_to_interval(n, v, dt);
   }
 }
 
@@ -288,9 +290,8 @@ std::vector<ParticleState> ParticleTracker::measure(const SolidPhase& solids, co
     double v[kForceValues];
     force_vectors(body, flow, frame, v);
     if (last_dt > 0.0) {  // a row: the mean over the interval that this step closes
+      add_to_interval(n, v, last_dt);
       auto& acc = impulse_[n];
-      for (int q = 0; q < kImpulseValues - 1; ++q) acc[q] += last_dt * v[3 + q];
-      acc[kImpulseValues - 1] += last_dt;
       for (int q = 0; q < kImpulseValues - 1; ++q) v[3 + q] = acc[q] / acc[kImpulseValues - 1];
       acc = {};
     }

@@ -75,7 +75,9 @@ class ParticleTracker {
   // viscous, elastic, 12) and the paper's decomposition (12), summed over the ranks.
   static constexpr int kForceValues = 27;
   void force_vectors(const SolidBody& body, const FlowState& flow, const GridFrame& frame,
-                     double out[kForceValues]) const;
+                     double (&out)[kForceValues]) const;
+  // Adds the step's force vectors (force_vectors' after the momentum), dt long, to body n's interval.
+  void add_to_interval(size_t n, const double (&v)[kForceValues], double dt);
   // Volume, first and second moments about `ref` of the body's sharp shape (edge width -> 0).
   void sharp_shape_moments(const SolidBody& body, const double ref[3], const double period[3], double out[10]) const;
 

@@ -54,7 +54,8 @@ double whole_centroid_y(test::CoupledCase& run) {
   return run.comm.sum(sum[1]) / run.comm.sum(sum[0]);
 }
 
-Budget pipe_run(bool follow, int steps, SolidModelKind model = SolidModelKind::Paper) {
+// The short pipe run of every test here: 24^3 cells, a sphere of 7 cells per d at r = 0.6 R.
+CaseConfig pipe_case(SolidModelKind model) {
   CaseConfig cfg = test::small_case(Geometry::Pipe, 24, 24, 24, 1.0, 1.0, 1.0, 100.0, InitialFlow::Laminar);
   SolidConfig sphere;
   sphere.diameter = 0.3;
@@ -63,7 +64,11 @@ Budget pipe_run(bool follow, int steps, SolidModelKind model = SolidModelKind::P
   sphere.initial_velocity = InitialSolidVelocity::Fluid;
   sphere.model = model;
   cfg.solids.push_back(sphere);
-  test::CoupledCase run(cfg);
+  return cfg;
+}
+
+Budget pipe_run(bool follow, int steps, SolidModelKind model = SolidModelKind::Paper) {
+  test::CoupledCase run(pipe_case(model));
   Budget b;
   double t = 0.0;
   auto follow_and_record = [&] {
@@ -156,14 +161,7 @@ TEST(ParticleForce, ReferenceMapRadialForceChangesTheRadialMomentum) {
 // order: 1e-12 of the largest term), P_r the row step's, and a step's spike is neither sampled
 // alone nor lost between rows.
 TEST(ParticleForce, ARowReportsTheMeanForceSinceThePreviousRow) {
-  CaseConfig cfg = test::small_case(Geometry::Pipe, 24, 24, 24, 1.0, 1.0, 1.0, 100.0, InitialFlow::Laminar);
-  SolidConfig sphere;
-  sphere.diameter = 0.3;
-  sphere.center = {0.5, 0.15, 0.0};
-  sphere.We = 1.0;
-  sphere.initial_velocity = InitialSolidVelocity::Fluid;
-  sphere.model = SolidModelKind::ReferenceMap;
-  cfg.solids.push_back(sphere);
+  const CaseConfig cfg = pipe_case(SolidModelKind::ReferenceMap);
   test::CoupledCase run(cfg);
   ParticleTracker rows(cfg, run.grid, run.comm);  // a row every `every` steps
   constexpr int every = 4, steps = 24;
