@@ -54,7 +54,7 @@ double whole_centroid_y(test::CoupledCase& run) {
   return run.comm.sum(sum[1]) / run.comm.sum(sum[0]);
 }
 
-// The short pipe run of every test here: 24^3 cells, a sphere of 7 cells per d at r = 0.6 R.
+// The short pipe run of every test here: 24^3 cells, a sphere of 7.2 cells per d at r = 0.3 R.
 CaseConfig pipe_case(SolidModelKind model) {
   CaseConfig cfg = test::small_case(Geometry::Pipe, 24, 24, 24, 1.0, 1.0, 1.0, 100.0, InitialFlow::Laminar);
   SolidConfig sphere;
