@@ -2,7 +2,8 @@
 // Re = 100, cubic cells, length [Nx/Ny, 1, 1]; the solid kernels with the quick start's sphere
 // d = 0.2 at r/R = 0.2828, We = 1, after one step so that B != I and psi has an interface).
 //
-// Counters: ns_per_cell (per call, per interior cell of the global grid) and GB/s, an
+// Counters: ns_per_cell (per call, per interior cell of the global grid; the particle's kernels:
+// per cell of the box they run on, as the solver runs them on the body's window) and GB/s, an
 // *effective* bandwidth: the minimal bytes the kernel must move (each field it reads or writes
 // streamed exactly once, stencil neighbours from cache, no write-allocate, the 2D wall masks
 // neglected) divided by the time. Compare it with bench_triad's GB/s (also counted without
@@ -59,10 +60,11 @@ struct PipeCase {
   }
 };
 
-// Times `kernel` (fenced, slowest rank) and sets ns_per_cell and GB/s from `bytes_per_call`
-// (this rank's bytes; summed over ranks for the aggregate bandwidth).
+// Times `kernel` (fenced, slowest rank) and sets ns_per_cell per `cells` (this rank's; default: the
+// interior) and GB/s from `bytes_per_call` (this rank's; both summed over ranks).
 template <class Kernel>
-void time_kernel(benchmark::State& state, const Grid& g, double bytes_per_call, Kernel&& kernel) {
+void time_kernel(benchmark::State& state, const Grid& g, double bytes_per_call, Kernel&& kernel, double cells = -1.0) {
+  if (cells < 0.0) cells = double(g.interior().size());
   kernel();  // warm-up
   compat::fence();
   double total_s = 0.0;
@@ -77,8 +79,9 @@ void time_kernel(benchmark::State& state, const Grid& g, double bytes_per_call, 
     total_s += sec;
   }
   MPI_Allreduce(MPI_IN_PLACE, &bytes_per_call, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  MPI_Allreduce(MPI_IN_PLACE, &cells, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
   const double calls = double(state.iterations());
-  state.counters["ns_per_cell"] = benchmark::Counter(1e9 * total_s / (calls * double(g.global_cells())));
+  state.counters["ns_per_cell"] = benchmark::Counter(1e9 * total_s / (calls * cells));
   state.counters["GB/s"] = benchmark::Counter(1e-9 * bytes_per_call * calls / total_s);
   state.counters["threads"] = benchmark::Counter(ExecSpace().concurrency());
   state.SetLabel(compat::default_backend_name());
@@ -86,6 +89,21 @@ void time_kernel(benchmark::State& state, const Grid& g, double bytes_per_call, 
 
 // bytes of `doubles` per interior cell of this rank
 double cell_bytes(const Grid& g, int doubles) { return 8.0 * doubles * double(g.interior().size()); }
+
+// The body's fields live on a window around it (src/solid/solid_window.hpp): its transport runs
+// on that window less the WENO5 stencil's 3 cells, cut to the interior (the solver's rhs box,
+// psi's support grown by 3, lies inside it), with rhs buffers on the same window.
+Box transport_box(const Grid& g, const WindowField& psi) {
+  Box box = psi.window();
+  for (int d = 0; d < 3; ++d) {
+    box.lo[d] += 3;
+    box.hi[d] -= 3;
+  }
+  return intersection(box, g.interior());
+}
+WindowField window_like(const WindowField& f, const char* label) {
+  return WindowField(Field3(std::string(label), f.data.extent(0), f.data.extent(1), f.data.extent(2)), f.lo);
+}
 
 // momentum_rhs, 3 components in one sweep with the constant viscosity (the single-phase path, and
 // everywhere outside a body's box). Minimal: read u, v, w; write rhs_u, rhs_v, rhs_w = 6 doubles.
@@ -209,41 +227,48 @@ void BM_FillVelocity(benchmark::State& state) {
               [&] { c.flow.boundaries().fill_velocity(c.flow.state().vel, 0.0); });
 }
 
-// scalar_advection_rhs (WENO5 psi transport) with the sphere present. Minimal: read psi, u, v,
-// w; write rhs = 5 doubles (the far field, skipped by star_max, reads only psi).
+// scalar_advection_rhs (WENO5 psi transport) on the body's transport box. Minimal: read psi,
+// u, v, w; write rhs = 5 doubles per cell of the box.
 void BM_ScalarAdvectionRhs(benchmark::State& state) {
   PipeCase c(state, true);
   const auto& body = c.solids.bodies()[0];
-  const Field3 rhs = c.grid.make_field("psi_rhs");
-  time_kernel(state, c.grid, cell_bytes(c.grid, 5), [&] {
-    kernels::scalar_advection_rhs(rhs, body.psi.data, c.flow.state().vel, c.grid.h, c.grid.interior());
-  });
+  const WindowField rhs = window_like(body.psi, "psi_rhs");
+  const Box box = transport_box(c.grid, body.psi);
+  time_kernel(
+      state, c.grid, 8.0 * 5 * double(box.size()),
+      [&] { kernels::scalar_advection_rhs(rhs, body.psi, c.flow.state().vel, c.grid.h, box); }, double(box.size()));
 }
 
-// tensor_transport_rhs (WENO5 advection + stretching of the six B components). Minimal: read
-// 6 B, u, v, w, psi; write 6 rhs = 16 doubles.
+// tensor_transport_rhs (WENO5 advection + stretching of the six B components) on the body's
+// transport box. Minimal: read 6 B, u, v, w, psi; write 6 rhs = 16 doubles per cell of the box.
 void BM_TensorTransportRhs(benchmark::State& state) {
   PipeCase c(state, true);
   const auto& body = c.solids.bodies()[0];
   kernels::Tensor6 rhs;
-  for (int s = 0; s < kernels::kTensorComponents; ++s) rhs.c[s] = c.grid.make_field("b_rhs");
-  time_kernel(state, c.grid, cell_bytes(c.grid, 16), [&] {
-    kernels::tensor_transport_rhs(rhs, body.b, c.flow.state().vel, body.psi.data, 1e-6, c.grid.h, c.grid.interior());
-  });
+  for (int s = 0; s < kernels::kTensorComponents; ++s) rhs.c[s] = window_like(body.b.c[s], "b_rhs");
+  const Box box = transport_box(c.grid, body.psi);
+  time_kernel(
+      state, c.grid, 8.0 * 16 * double(box.size()),
+      [&] { kernels::tensor_transport_rhs(rhs, body.b, c.flow.state().vel, body.psi, 1e-6, c.grid.h, box); },
+      double(box.size()));
 }
 
-// add_elastic_force (one body, 3 components). Minimal: read psi, 6 B, 6 B_prev, 3 rhs; write
-// 3 rhs = 19 doubles. (As written: the shear stresses once, 7 read and 3 written, then one pass over
+// add_elastic_force (one body, 3 components) on the faces the solver gives it
+// (elastic_force_region). Minimal: read psi, 6 B, 6 B_prev, 3 rhs; write 3 rhs = 19 doubles per
+// cell of that box. (As written: the shear stresses once, 7 read and 3 written, then one pass over
 // the three components' faces reading psi, 3 B_DD, 3 B_prev_DD, the 3 shear stresses and 3 rhs and
 // writing 3 rhs: 26 doubles.)
 void BM_AddElasticForce(benchmark::State& state) {
   PipeCase c(state, true);
   const auto& body = c.solids.bodies()[0];
   const auto rhs = c.make_velocity("rhs");
-  time_kernel(state, c.grid, cell_bytes(c.grid, 19), [&] {
-    kernels::add_elastic_force(rhs, body.psi, body.b, body.b_prev, body.model->scratch(), body.G, c.grid.h,
-                               c.grid.interior());
-  });
+  const Box faces = c.solids.elastic_force_region();
+  time_kernel(
+      state, c.grid, 8.0 * 19 * double(faces.size()),
+      [&] {
+        kernels::add_elastic_force(rhs, body.psi, body.b, body.b_prev, body.model->scratch(), body.G, c.grid.h, faces);
+      },
+      double(faces.size()));
 }
 
 #define EULERFSI_KERNEL_BENCH(fn)                                                                            \

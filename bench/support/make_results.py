@@ -25,8 +25,9 @@ NAMES = {
     "Divergence": "divergence + flow-rate sum",
     "SubtractGradientStepPressure": "subtract_gradient + step pressure + flow-rate shift",
     "SubtractGradient": "subtract_gradient", "FillGhosts": "fill_ghosts y,z (u,v,w)",
-    "FillVelocity": "fill_velocity (x halo + y,z ghosts)", "ScalarAdvectionRhs": "scalar_advection_rhs (psi)",
-    "TensorTransportRhs": "tensor_transport_rhs (B)", "AddElasticForce": "add_elastic_force",
+    "FillVelocity": "fill_velocity (x halo + y,z ghosts)", "ScalarAdvectionRhs": "scalar_advection_rhs (psi; per cell of the body's box)",
+    "TensorTransportRhs": "tensor_transport_rhs (B; per cell of the body's box)",
+    "AddElasticForce": "add_elastic_force (per cell of the body's box)",
     "PoissonSolve": "Poisson solve (FFTW, estimate)", "PenalizeWallLayer": "penalize_wall_layer (u,v,w; pipe wall)",
 }
 
@@ -113,7 +114,8 @@ def main():
                  f"(`--benchmark_repetitions={args.reps} --benchmark_report_aggregates_only=true`); "
                  f"load average before -> after the run: {args.load}.")
     lines.append("")
-    lines.append("ns/cell is per call and per interior cell; ns/cell/step multiplies it by the calls in one RK3 "
+    lines.append("ns/cell is per call and per interior cell (the particle's kernels: per cell of the box around the "
+                 "body they run on, as in the solver); ns/cell/step multiplies it by the calls in one RK3 "
                  "step (3 substeps). GB/s is the effective bandwidth from the *minimal* bytes a kernel must move "
                  "(the count is in bench/bench_kernels.cpp above each benchmark); the triad counts 24 B per element "
                  "without write-allocate, the same convention.")
