@@ -6,14 +6,18 @@
 # (at 12 cells per d and finer a soft map particle released at rest can blow up; README, "Known
 # limitations"), so the resolutions differ in nothing else. Each run has its own folder under RUNS
 # (default runs/convergence; runs/ is ignored by git) and is checkpointed: the same command
-# continues it. `figure` draws r/R and D against t of every finished or running run, and their
-# cross-sections at SHAPE_TIMES.
+# continues it. `archive` copies a run's thinned particle.csv, its resolved case and its sections
+# into docs/data/paper_convergence/NAME (tools/archive_run.py; committed, so the figure outlives
+# the machine that ran it). `figure` draws r/R and D against t of every run under RUNS, and of
+# every archived run that RUNS lacks, and their cross-sections at SHAPE_TIMES.
 #   usage: tools/paper_convergence.sh run NAME [NAME ...]   NAME: {paper,map}{8,12,16,24}_we{4,0.125},
 #                                                           or paper..._noext: B transported everywhere
 #                                                           as the paper does, at CFL 0.2
+#          tools/paper_convergence.sh archive NAME [NAME ...]
 #          tools/paper_convergence.sh figure [OUT.png]       (default RUNS/paper_convergence.png)
 #          tools/paper_convergence.sh list
-#   environment: BIN (default build/eulerfsi), RUNS, NICE (default 10), T_END (default 40),
+#   environment: BIN (default build/eulerfsi), RUNS, ARCHIVE (default docs/data/paper_convergence),
+#                NICE (default 10), T_END (default 40),
 #                PYTHON (default /usr/bin/python3), SHAPE_TIMES (figure's sections, default "10 30 40")
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -22,6 +26,7 @@ runs=${RUNS:-$PWD/runs/convergence}
 nice_level=${NICE:-10}
 t_end=${T_END:-40}
 python=${PYTHON:-/usr/bin/python3}
+archive=${ARCHIVE:-$root/docs/data/paper_convergence}
 
 names() {
   for m in paper map; do for c in 8 12 16 24; do for w in 4 0.125; do echo "${m}${c}_we${w}"; done; done; done
@@ -54,13 +59,22 @@ case $cmd in
     [ $# -gt 0 ] || { echo "usage: $0 run NAME [NAME ...] (list: $0 list)" >&2; exit 2; }
     source "$root/tools/queue_runs.sh"
     queue_runs paper_convergence "$@" ;;
+  archive)
+    [ $# -gt 0 ] || { echo "usage: $0 archive NAME [NAME ...] (list: $0 list)" >&2; exit 2; }
+    for name in "$@"; do
+      case_args "$name" > /dev/null || exit 2
+      "$python" "$root/tools/archive_run.py" "$runs/$name" "$archive/$name"
+    done ;;
   figure)
     out=${1:-$runs/paper_convergence.png}
     found=()
-    for name in $(names); do [ -f "$runs/$name/particle.csv" ] && found+=("$runs/$name"); done
-    [ ${#found[@]} -gt 0 ] || { echo "no runs under $runs (run: $0 run NAME)" >&2; exit 2; }
+    for name in $(names); do
+      if [ -f "$runs/$name/particle.csv" ]; then found+=("$runs/$name")
+      elif [ -f "$archive/$name/particle.csv" ]; then found+=("$archive/$name"); fi
+    done
+    [ ${#found[@]} -gt 0 ] || { echo "no runs under $runs or $archive (run: $0 run NAME)" >&2; exit 2; }
     # shape_times (environment, t U_b / D): the cross-sections drawn, for the runs that saved them
     read -r -a shapes <<< "${SHAPE_TIMES:-10 30 40}"
     "$python" "$root/tools/eulerfsi_plot.py" models "${found[@]}" --shape-times "${shapes[@]}" --out "$out" ;;
-  *) echo "unknown command '$cmd' (run, figure, list)" >&2; exit 2 ;;
+  *) echo "unknown command '$cmd' (run, archive, figure, list)" >&2; exit 2 ;;
 esac

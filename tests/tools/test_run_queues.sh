@@ -2,7 +2,8 @@
 # tools/show_it_runs.sh, tools/campaign_runs.sh and tools/paper_convergence.sh with a stand-in
 # binary that records its arguments: the names they accept, the case and --set arguments each run
 # gets, --restart once a checkpoint exists, T_END, a clear refusal of an unknown name, and the
-# convergence figure drawn from the runs there are.
+# convergence figure drawn from the runs there are, and the archive of a run (thinned, no machine
+# paths) that the figure falls back to.
 #   usage: test_run_queues.sh WORK_DIR
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -16,7 +17,7 @@ cat > "$stub" <<'STUB'
 echo "$*" >> "$STUB_LOG"
 STUB
 chmod +x "$stub"
-export STUB_LOG=$work/args.log BIN=$stub RUNS=$work/runs NICE=0
+export STUB_LOG=$work/args.log BIN=$stub RUNS=$work/runs NICE=0 ARCHIVE=$work/archive
 
 # the names
 names=$("$root/tools/show_it_runs.sh" list)
@@ -73,4 +74,33 @@ for name in paper8_we4 map8_we4; do
 done
 RUNS=$conv "$root/tools/paper_convergence.sh" figure "$work/conv.png" > /dev/null || fail "the convergence figure failed"
 [ -s "$work/conv.png" ] || fail "no convergence figure"
+
+# the archive: a run's resolved case without this machine's paths, particle.csv one row per 0.1
+# (t U_b/D = t here: D = 1, U_b = 1) and the last, the sections copied; the figure reads it
+run=$conv/map12_we4
+mkdir -p "$run/shapes"
+printf '# Resolved case from %s/cases/desk/x.toml
+[domain]
+length = [2.0, 1.0, 1.0]
+[flow]
+bulk_velocity = 1.0
+[output]
+dir = "%s"
+[[solid]]
+model = "reference-map"
+' \
+  "$root" "$run" > "$run/config.resolved.toml"
+/usr/bin/python3 -c "print('step,t,r_over_R,taylor_D'); [print(f'{n},{0.03*n:.2f},0.3,0.1') for n in range(35)]" > "$run/particle.csv"
+cp "$conv/map8_we4/shapes/"* "$run/shapes/"
+RUNS=$conv "$root/tools/paper_convergence.sh" archive map12_we4 > /dev/null || fail "archive failed"
+kept=$(cut -d, -f2 "$ARCHIVE/map12_we4/particle.csv" | tail -n +2 | tr '\n' ' ')
+[ "$kept" = "0.00 0.12 0.21 0.30 0.42 0.51 0.60 0.72 0.81 0.90 1.02 " ] || fail "archived rows at t = $kept"
+! grep -q -e "$root" -e "$work" "$ARCHIVE/map12_we4/config.resolved.toml" || fail "archived case names this machine's paths"
+grep -q 'dir = "map12_we4"' "$ARCHIVE/map12_we4/config.resolved.toml" || fail "archived output.dir"
+cmp -s "$run/shapes/00000007.csv" "$ARCHIVE/map12_we4/shapes/00000007.csv" || fail "sections not archived"
+if out=$(RUNS=$conv "$root/tools/paper_convergence.sh" archive paper8_we0.125 2>&1); then fail "archived a missing run"; fi
+grep -q "config.resolved.toml missing" <<< "$out" || fail "no clear message for a missing run: $out"
+rm -rf "$run"
+RUNS=$conv "$root/tools/paper_convergence.sh" figure "$work/conv2.png" > /dev/null || fail "the figure from an archive failed"
+[ -s "$work/conv2.png" ] || fail "no figure from the archive"
 echo "run queues: OK"
