@@ -11,24 +11,17 @@ usage: archive_run.py RUN_DIR DEST_DIR [--every 0.1] [--repo ROOT]
 """
 import argparse
 import csv
-import re
 import shutil
 import sys
 from pathlib import Path
 
-
-def relative_config(text, repo, run_dir, dest):
-    """The resolved case with this machine's repository and run paths made relative."""
-    text = text.replace(str(repo) + "/", "")
-    return re.sub(r'^dir = ".*"$', f'dir = "{dest.name}"', text, flags=re.M).replace(str(run_dir), dest.name)
+from eulerfsi_plot import Run  # the resolved case's time scale, as the figures read it
 
 
-def time_scale(config_text):
-    """U_b / D of the resolved case (t in particle.csv times it is t U_b/D)."""
-    length = re.search(r"^length = \[([^\]]*)\]", config_text, flags=re.M)
-    bulk = re.search(r"^bulk_velocity = ([0-9.eE+-]+)", config_text, flags=re.M)
-    diameter = float(length.group(1).split(",")[1]) if length else 1.0
-    return (float(bulk.group(1)) if bulk else 1.0) / diameter
+def without_machine_paths(text, repo, run_dir, dest):
+    """Text of the run with this machine's repository path dropped and its run folder renamed to
+    the archive's (output.dir included)."""
+    return text.replace(str(repo) + "/", "").replace(str(run_dir), dest.name)
 
 
 def thin_rows(rows, t_col, every, scale):
@@ -57,17 +50,16 @@ def main():
     if a.every <= 0:
         sys.exit("archive_run: --every must be > 0")
     dest.mkdir(parents=True, exist_ok=True)
-    config = (run / "config.resolved.toml").read_text()
-    (dest / "config.resolved.toml").write_text(relative_config(config, a.repo.resolve(), run, dest))
+    for name in ("config.resolved.toml", "summary.json"):
+        if (run / name).is_file():
+            text = (run / name).read_text()
+            (dest / name).write_text(without_machine_paths(text, a.repo.resolve(), run, dest))
     with open(run / "particle.csv", newline="") as f:
         rows = list(csv.reader(f))
     header, body = rows[0], rows[1:]
-    kept = thin_rows(body, header.index("t"), a.every, time_scale(config))
+    kept = thin_rows(body, header.index("t"), a.every, Run(run).time_scale())
     with open(dest / "particle.csv", "w", newline="") as f:
         csv.writer(f, lineterminator="\n").writerows([header] + kept)
-    if (run / "summary.json").is_file():
-        summary = (run / "summary.json").read_text()
-        (dest / "summary.json").write_text(summary.replace(str(a.repo.resolve()) + "/", "").replace(str(run), dest.name))
     if (run / "shapes" / "index.csv").is_file():
         shutil.rmtree(dest / "shapes", ignore_errors=True)
         shutil.copytree(run / "shapes", dest / "shapes")
