@@ -19,9 +19,9 @@ from eulerfsi_plot import Run  # the resolved case's time scale, as the figures 
 
 
 def without_machine_paths(text, repo, run_dir, dest):
-    """Text of the run with this machine's repository path dropped and its run folder renamed to
-    the archive's (output.dir included)."""
-    return text.replace(str(repo) + "/", "").replace(str(run_dir), dest.name)
+    """Text of the run with its run folder renamed to the archive's (output.dir included) and this
+    machine's repository path dropped; the run folder first, since it may lie inside the repository."""
+    return text.replace(str(run_dir), dest.name).replace(str(repo) + "/", "")
 
 
 def thin_rows(rows, t_col, every, scale):
