@@ -40,11 +40,12 @@ def surface(run):
     if model != "reference-map":
         return model or "-"
     ramp = solid.get("map_ramp", 0.0)
+    band = ", smooth band" if solid.get("map_smooth_band", False) else ""
     if not ramp > 0:
-        return "map, no ramp"
+        return "map, no ramp" + band
     # a run resolved before the key existed had the ramp's weights in the extension
     weighted = ", weighted fits" if solid.get("map_ramp_in_extension", True) else ""
-    return f"map, ramp {ramp:g}, relax {solid.get('map_relax_time', 0.0):g}{weighted}"
+    return f"map, ramp {ramp:g}, relax {solid.get('map_relax_time', 0.0):g}{weighted}{band}"
 
 
 def fmt(x, digits=2):

@@ -34,7 +34,7 @@ const std::vector<Section>& schema() {
       {"time", {"cfl", "dt", "t_end", "max_steps", "implicit_viscosity"}},
       {"solver", {"fft_planning", "reproject_constrained"}},
       {"output", {"dir", "every", "fields_every", "profiles_every", "checkpoint_every", "shape_times"}},
-      {"solid", {"shape", "diameter", "center", "thickness", "We", "viscosity_ratio", "initial_velocity", "sharpening", "model", "map_margin", "map_ramp", "map_relax_time", "map_ramp_in_extension", "b_extension", "constraint"}},
+      {"solid", {"shape", "diameter", "center", "thickness", "We", "viscosity_ratio", "initial_velocity", "sharpening", "model", "map_margin", "map_ramp", "map_relax_time", "map_ramp_in_extension", "map_smooth_band", "b_extension", "constraint"}},
   };
   return s;
 }
@@ -654,6 +654,10 @@ void read_solids(const Reader& r, const toml::table& root, const DomainConfig& d
       r.fail(s + ".map_ramp_in_extension", s + ".map_ramp_in_extension = " + (c.map_ramp_in_extension ? "true" : "false") +
                                                ": weighs the cells of " + s + ".map_ramp in the extension, so it needs "
                                                "model = \"reference-map\" and map_ramp > 0 (set map_ramp, or remove it)");
+    r.get(t, s, "map_smooth_band", c.map_smooth_band);
+    if (c.map_smooth_band && c.model != SolidModelKind::ReferenceMap)
+      r.fail(s + ".map_smooth_band", s + ".map_smooth_band = true: fits the reference map's band, so it needs "
+                                         "model = \"reference-map\" (remove it)");
     r.get(t, s, "b_extension", c.b_extension);
     // the reference map derives B from xi everywhere it is known: there is no transported B to extend
     if (c.model == SolidModelKind::ReferenceMap && !c.b_extension)
@@ -861,7 +865,8 @@ std::string to_toml(const CaseConfig& c) {
     if (s.model == SolidModelKind::ReferenceMap)
       os << "map_ramp = " << fmt_double(s.map_ramp) << "\n"
          << "map_relax_time = " << fmt_double(s.map_relax_time) << "\n"
-         << "map_ramp_in_extension = " << (s.map_ramp_in_extension ? "true" : "false") << "\n";
+         << "map_ramp_in_extension = " << (s.map_ramp_in_extension ? "true" : "false") << "\n"
+         << "map_smooth_band = " << (s.map_smooth_band ? "true" : "false") << "\n";
     os << "b_extension = " << (s.b_extension ? "true" : "false") << "\n"
        << "constraint = " << toml_str(to_string(s.constraint)) << "\n";
   }

@@ -98,6 +98,7 @@ struct SolidConfig {
   double map_ramp = 0.0;        // reference map: a solid cell's weight in the extension rises over this many cells
   double map_relax_time = 0.0;  // reference map: the ramp's cells relax towards the fit over this time (0: at once)
   bool map_ramp_in_extension = false;  // reference map: the ramp's weights enter the extension's fits too
+  bool map_smooth_band = false;  // reference map: psi's band fitted in one smooth fit through the solid, no cascade
   bool b_extension = true;       // paper model: B extended from the solid over a band, I beyond (false: the paper's B)
   InitialSolidVelocity initial_velocity = InitialSolidVelocity::Fluid;
   SolidModelKind model = SolidModelKind::Paper;

@@ -13,6 +13,7 @@ KOKKOS_INLINE_FUNCTION double sqrt(double x) { return Kokkos::sqrt(x); }
 KOKKOS_INLINE_FUNCTION double fabs(double x) { return Kokkos::fabs(x); }
 KOKKOS_INLINE_FUNCTION double cos(double x) { return Kokkos::cos(x); }
 KOKKOS_INLINE_FUNCTION double sin(double x) { return Kokkos::sin(x); }
+KOKKOS_INLINE_FUNCTION double asin(double x) { return Kokkos::asin(x); }
 KOKKOS_INLINE_FUNCTION double pow(double x, double y) { return Kokkos::pow(x, y); }
 KOKKOS_INLINE_FUNCTION bool isfinite(double x) { return Kokkos::isfinite(x); }
 KOKKOS_INLINE_FUNCTION double floor(double x) { return Kokkos::floor(x); }
@@ -21,6 +22,7 @@ KOKKOS_INLINE_FUNCTION double sqrt(double x) { return Kokkos::Experimental::sqrt
 KOKKOS_INLINE_FUNCTION double fabs(double x) { return Kokkos::Experimental::fabs(x); }
 KOKKOS_INLINE_FUNCTION double cos(double x) { return Kokkos::Experimental::cos(x); }
 KOKKOS_INLINE_FUNCTION double sin(double x) { return Kokkos::Experimental::sin(x); }
+KOKKOS_INLINE_FUNCTION double asin(double x) { return Kokkos::Experimental::asin(x); }
 KOKKOS_INLINE_FUNCTION double pow(double x, double y) { return Kokkos::Experimental::pow(x, y); }
 KOKKOS_INLINE_FUNCTION bool isfinite(double x) { return Kokkos::Experimental::isfinite(x); }
 KOKKOS_INLINE_FUNCTION double floor(double x) { return Kokkos::Experimental::floor(x); }

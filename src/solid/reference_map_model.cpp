@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "core/launch.hpp"
+#include "kernels/smooth_band_fit.hpp"
 #include "kernels/tensor_extension.hpp"
 #include "solid/paper_model.hpp"
 #include "solver/rk3.hpp"
@@ -211,6 +212,12 @@ double ReferenceMapModel::surface_ramp() const {
   return cfg_solid_.map_ramp * std::min(grid_.h[0], std::min(grid_.h[1], grid_.h[2]));
 }
 
+// The smooth band fit's edge ramp over the surface ramp (both in cells), at most 1: weight_ holds
+// the surface ramp's weights, from which kernels::edge_weight reads the thinner edge's.
+double ReferenceMapModel::band_edge_ratio() const {
+  return cfg_solid_.map_ramp > 0.0 ? std::min(1.0, kernels::kBandFitEdgeRamp / cfg_solid_.map_ramp) : 1.0;
+}
+
 // The solid where the map now puts it, with each solid cell's weight in the extension; the ghosts
 // of both (the fits next to a slab end read the neighbour's cells).
 void ReferenceMapModel::classify(const Box& region, bool initial) {
@@ -230,7 +237,11 @@ void ReferenceMapModel::blend_fits(const Box& region, double substep_dt) {
   // the fraction of the way to the fit a ramp cell goes this substep: all of it, or dt / relax_time
   const double tau = cfg_solid_.map_relax_time;
   const double rate = tau > 0.0 ? std::min(1.0, substep_dt / tau) : 1.0;
-  if (!blend_box_.empty()) kernels::surface_fits(q_, level_, weight_, rhs_, blend_box_, rate);
+  if (blend_box_.empty()) return;
+  if (cfg_solid_.map_smooth_band)
+    kernels::smooth_surface_fits(q_, level_, weight_, rhs_, blend_box_, rate, band_edge_ratio());
+  else
+    kernels::surface_fits(q_, level_, weight_, rhs_, blend_box_, rate);
 }
 
 void ReferenceMapModel::store_blend(const Box& region) {
@@ -281,6 +292,12 @@ void ReferenceMapModel::extrapolate(const Box& region) {
     // every rank exchanges, with or without a body: the halo exchange is collective
     fill_map_ghosts(region);
     fill_level(region);
+    // psi's band (levels 2 .. kMaxDerivedLevel) once more, in one fit each (solid.map_smooth_band);
+    // the last sweep then fits from it
+    if (sweep == int(kMaxDerivedLevel) - 1 && cfg_solid_.map_smooth_band) {
+      if (!reach.empty()) kernels::smooth_band_fit(q_, level_, weight_, kMaxDerivedLevel, band_edge_ratio(), reach);
+      fill_map_ghosts(region);
+    }
   }
 }
 

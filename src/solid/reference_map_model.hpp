@@ -63,6 +63,7 @@ class ReferenceMapModel final : public SolidModel {
   void finish_extrapolation(const SolidBody& body, const Box& region);
   double solid_margin() const;
   double surface_ramp() const;
+  double band_edge_ratio() const;
   void classify(const Box& region, bool initial);
   void blend_fits(const Box& region, double substep_dt);  // substep_dt: sets the relaxation's rate
   void store_blend(const Box& region);

@@ -72,6 +72,7 @@ void expect_same(const CaseConfig& a, const CaseConfig& b) {
     EXPECT_EQ(a.solids[i].map_ramp, b.solids[i].map_ramp);
     EXPECT_EQ(a.solids[i].map_relax_time, b.solids[i].map_relax_time);
     EXPECT_EQ(a.solids[i].map_ramp_in_extension, b.solids[i].map_ramp_in_extension);
+    EXPECT_EQ(a.solids[i].map_smooth_band, b.solids[i].map_smooth_band);
     EXPECT_EQ(a.solids[i].b_extension, b.solids[i].b_extension);
   }
 }
@@ -509,6 +510,10 @@ TEST(ConfigErrors, MapMarginBelongsToTheReferenceMap) {
   expect_error("[[solid]]\nmodel = \"reference-map\"\nmap_ramp = 0\nmap_ramp_in_extension = true\n",
                {"solid[0].map_ramp_in_extension = true", "map_ramp > 0"});
   expect_error("[[solid]]\nmap_ramp_in_extension = 1\n", {"solid[0].map_ramp_in_extension"});
+  // the smooth band fit: the map's only
+  expect_error("[[solid]]\nmodel = \"paper\"\nmap_smooth_band = true\n",
+               {"solid[0].map_smooth_band = true", "\"reference-map\""});
+  expect_error("[[solid]]\nmap_smooth_band = \"yes\"\n", {"solid[0].map_smooth_band"});
   expect_error("[[solid]]\nmodel = \"paper\"\nmap_relax_time = 0.05\n", {"solid[0].map_relax_time", "\"reference-map\""});
   expect_error("[[solid]]\nmodel = \"reference-map\"\nmap_ramp = 0.5\nmap_relax_time = -1\n",
                {"solid[0].map_relax_time = -1", ">= 0"});

@@ -2,7 +2,7 @@
 // sweeps reproduce a rigid motion exactly, with and without the surface ramp's weights and blend,
 // also where those weights starve a fit;
 // a cell leaving the solid changes the extension continuously with the ramp (and by a jump
-// without); the last sweep's deferred cells (DeferredFits) hold, wherever anything reads them, the
+// without) in the first shell, and in the second only with the smooth band fit (kernels/smooth_band_fit.hpp); the last sweep's deferred cells (DeferredFits) hold, wherever anything reads them, the
 // values of a full sweep, bit for bit; the host rows equal the per-cell form (GPUs).
 #include <gtest/gtest.h>
 
@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "kernels/reference_map.hpp"
+#include "kernels/smooth_band_fit.hpp"
 
 using namespace eulerfsi;
 
@@ -63,12 +64,22 @@ struct Map {
     for (int s = 1; s <= kLastSweep; ++s)
       kernels::extrapolation_sweep(q, level, weight, s, kInterior, defer && s == kLastSweep);
   }
-  // the sweeps with the surface ramp's blend around them, as the model runs them
-  void blend_and_extrapolate(double rate = 1.0) const {
+  // the sweeps with the surface ramp's blend around them, as the model runs them; edge_ratio > 0:
+  // the smooth band fit (solid.map_smooth_band) with that edge ramp over the surface ramp
+  void blend_and_extrapolate(double rate = 1.0, double edge_ratio = 0.0) const {
     kernels::Vector3 out;
     for (int a = 0; a < 3; ++a) out.c[a] = WindowField(Field3("blend", kN, kN, kN));
-    kernels::surface_fits(q, level, weight, out, kInterior, rate);
-    extrapolate(false);
+    if (edge_ratio > 0.0) {
+      kernels::smooth_surface_fits(q, level, weight, out, kInterior, rate, edge_ratio);
+      for (int s = 1; s <= kLastSweep; ++s) {
+        kernels::extrapolation_sweep(q, level, weight, s, kInterior);
+        if (s == int(kMaxDerivedLevel) - 1)
+          kernels::smooth_band_fit(q, level, weight, kMaxDerivedLevel, edge_ratio, kInterior);
+      }
+    } else {
+      kernels::surface_fits(q, level, weight, out, kInterior, rate);
+      extrapolate(false);
+    }
     kernels::store_surface_blend(q, level, weight, out, kInterior);
   }
 };
@@ -100,10 +111,12 @@ HostCells on_host(const WindowField& f) { return Kokkos::create_mirror_view_and_
 // Rycroft et al. (2020) sec. 2.4: a linear fit through the known cells is exact for a linear q,
 // so every band cell carries the rigid motion to round-off.
 TEST(MapExtrapolation, ExactForARigidMotion) {
-  for (const double ramp : {0.0, 1.0}) {
+  for (const double ramp : {0.0, 1.0, 2.0}) {  // 2: a ramp of 1 with the smooth band fit
     SCOPED_TRACE(ramp);
-    const Map m(false, ramp);
-    if (ramp > 0.0) {
+    const Map m(false, std::fmin(ramp, 1.0));
+    if (ramp > 1.0) {
+      m.blend_and_extrapolate(1.0, 0.2);
+    } else if (ramp > 0.0) {
       m.blend_and_extrapolate();
     } else {
       m.extrapolate(false);
@@ -122,8 +135,9 @@ TEST(MapExtrapolation, ExactForARigidMotion) {
           }
   }
     EXPECT_GT(band, 2000);  // three shells around the sphere
-    // |q| <= 10 on the window: a few ulps of the normal equations' sums
-    EXPECT_LT(worst, 1e-12);
+    // |q| <= 10 on the window: a few ulps of the normal equations' sums (125 points a sweep; the
+    // smooth fit's ~180, extrapolated up to 3 cells from a one-sided cap: a hundred times that)
+    EXPECT_LT(worst, ramp > 1.0 ? 1e-10 : 1e-12);
   }
 }
 
@@ -173,8 +187,10 @@ TEST(MapExtrapolation, AStarvedFitStillCarriesARigidMotion) {
 // map (0.05 cells here; about 0.13 h in the quick start at 6.4 cells per d): without the ramp the
 // cell drops out of the fits at full weight and its q is replaced, and the solid and the first
 // shell (levels 1-2, where psi is largest outside the body) jump by a fraction of the drift; with
-// it the cell weighs ~1e-18 as it leaves and they change by round-off. The outer shells (levels
-// 3-4) still jump: a cell that changes level is fitted through other cells (the sweeps' cascade).
+// it the cell weighs ~1e-18 as it leaves and they change by round-off. The second shell (level 3)
+// still jumps with the sweeps, a cell that changes level being fitted through other cells (their
+// cascade), and changes by round-off with the smooth band fit, which fits every cell of psi's band
+// through the solid alone.
 TEST(MapExtrapolation, ACellLeavingTheSolidChangesTheExtensionContinuously) {
   const Map probe(false);
   const HostCells level = on_host(probe.level);
@@ -203,8 +219,12 @@ TEST(MapExtrapolation, ACellLeavingTheSolidChangesTheExtensionContinuously) {
       Kokkos::deep_copy(m.q.c[a].data, h);
     }
   };
-  double jump[2] = {0.0, 0.0};
-  for (const int with_ramp : {0, 1}) {
+  // [0] no ramp, [1] the ramp, over levels 1-2; [2] the ramp and [3] the ramp with the smooth band
+  // fit, over levels 1-3 (psi's whole band)
+  double jump[4] = {0.0, 0.0, 0.0, 0.0};
+  int covered = 0, uncovered = 0;  // level-3 cells with and without a whole single fit (both variants)
+  for (const int variant : {0, 1, 2}) {
+    const int with_ramp = variant > 0 ? 1 : 0;
     const double ramp = with_ramp;
     const Map in(false), out(false);
     for (const Map* m : {&in, &out}) drifted(*m);
@@ -215,7 +235,9 @@ TEST(MapExtrapolation, ACellLeavingTheSolidChangesTheExtensionContinuously) {
     kernels::classify_solid(out.level, out.weight, out.q, out.shape, out.centres, 3.0, shallowest + 1e-9, ramp, true, h,
                             kInterior);
     for (const Map* m : {&in, &out}) {
-      if (ramp > 0.0) {
+      if (variant == 2) {
+        m->blend_and_extrapolate(1.0, 0.2);
+      } else if (ramp > 0.0) {
         m->blend_and_extrapolate();
       } else {
         m->extrapolate(false);
@@ -229,12 +251,32 @@ TEST(MapExtrapolation, ACellLeavingTheSolidChangesTheExtensionContinuously) {
       for (int i = 0; i < kN; ++i)
         for (int j = 0; j < kN; ++j)
           for (int k = 0; k < kN; ++k)
-            if (li(i, j, k) > 0.0 && li(i, j, k) <= 2.0 && lo(i, j, k) > 0.0 && lo(i, j, k) <= 2.0)
-              jump[with_ramp] = std::fmax(jump[with_ramp], std::fabs(qi(i, j, k) - qo(i, j, k)));
+            {
+              const double l = std::fmax(li(i, j, k), lo(i, j, k)), d = std::fabs(qi(i, j, k) - qo(i, j, k));
+              if (!(li(i, j, k) > 0.0 && lo(i, j, k) > 0.0)) continue;
+              if (variant < 2 && l <= 2.0) jump[variant] = std::fmax(jump[variant], d);
+              if (variant == 0 || l > 3.0) continue;
+              // level 3: where the single fit is trusted whole on both sides (the rest take the
+              // sweeps' value in part: the kernel's comment)
+              if (l > 2.0) {
+                double unused[3];
+                const kernels::SmoothBandFit fi{in.q, in.level, in.weight, kMaxDerivedLevel, 0.2},
+                    fo{out.q, out.level, out.weight, kMaxDerivedLevel, 0.2};
+                const bool whole = fi.fit_at(i, j, k, unused) >= 1.0 && fo.fit_at(i, j, k, unused) >= 1.0;
+                if (a == 0) ++(whole ? covered : uncovered);
+                if (!whole) continue;
+              }
+              jump[variant + 1] = std::fmax(jump[variant + 1], d);
+            }
     }
   }
   EXPECT_GT(jump[0], 1e-3) << "without the ramp the extension jumps by a fraction of the drift";
   EXPECT_LT(jump[1], 1e-8);
+  EXPECT_GT(jump[2], 1e-4) << "the sweeps' cascade: the second shell jumps where a cell changes level";
+  // first order in the margin's step (2e-9 cells, which moves every cell's depth): the edge weight's
+  // slope is up to 1.5 / 0.2 per cell, on fits extrapolating a 0.05 drift up to 3 cells
+  EXPECT_LT(jump[3], 1e-6) << "the smooth band fit: no cascade";
+  EXPECT_GT(covered, uncovered) << "the single fit covers most of the second shell";
 }
 
 // solid.map_relax_time: a ramp cell goes the fraction rate (1 - w) of the way from its carried q to
