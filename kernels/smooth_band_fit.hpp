@@ -6,7 +6,7 @@
 //   w_n = E(depth_n) (1 - |r_n|^2 / 3.5^2)^2,  E = smoothstep(depth / edge_ramp)
 // r_n in cells. The offsets form a fixed stencil, so the fit changes only as cells join or leave the
 // solid, and E makes that continuous: a cell that leaves, or a band cell that changes level, moves
-// the band by round-off, not by a jump (no cascade). Where the stencil holds too few solid cells for
+// the band continuously, not by a jump (no cascade). Where the stencil holds too few solid cells for
 // a trusted fit (cells two cells out along a diagonal) the fit blends with the sweeps' value by its
 // trust (ExtrapolationSweep::fit_trust), and there the cascade still shows. The stencil stays within
 // the kGhost = 3 layers a rank's window holds of its neighbour's cells. Exact for a rigid motion (q
@@ -22,8 +22,8 @@ namespace eulerfsi::kernels {
 constexpr int kBandFitReach = 3;
 constexpr double kBandFitRadius = 3.5;
 // The edge ramp E's width in cells. Thin: with E over the surface blend's 0.5 cells the band follows
-// the deeper cells and a very stiff sphere's elastic oscillation grows at Re = 400 (D 0.03 -> 0.08
-// over t = 1-4; over 0.1 cells it decays as with the sweeps: docs/REFERENCE_MAP.md, "Smooth forces").
+// the deeper cells and a very stiff sphere's elastic oscillation grows at Re = 400 (D 0.018 -> 0.084
+// over t = 0.5-4; over 0.1 cells it decays as with the sweeps: docs/REFERENCE_MAP.md, "Smooth forces").
 constexpr double kBandFitEdgeRamp = 0.1;
 
 // A solid cell's weight at the classification's edge over a thinner ramp than the surface blend's:

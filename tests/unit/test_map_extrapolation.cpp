@@ -2,8 +2,9 @@
 // sweeps reproduce a rigid motion exactly, with and without the surface ramp's weights and blend,
 // also where those weights starve a fit;
 // a cell leaving the solid changes the extension continuously with the ramp (and by a jump
-// without) in the first shell, and in the second only with the smooth band fit (kernels/smooth_band_fit.hpp); the last sweep's deferred cells (DeferredFits) hold, wherever anything reads them, the
-// values of a full sweep, bit for bit; the host rows equal the per-cell form (GPUs).
+// without) in the first shell, and in the second only with the smooth band fit
+// (kernels/smooth_band_fit.hpp); the last sweep's deferred cells (DeferredFits) hold, wherever
+// anything reads them, the values of a full sweep, bit for bit; the host rows equal the per-cell form (GPUs).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -189,8 +190,8 @@ TEST(MapExtrapolation, AStarvedFitStillCarriesARigidMotion) {
 // shell (levels 1-2, where psi is largest outside the body) jump by a fraction of the drift; with
 // it the cell weighs ~1e-18 as it leaves and they change by round-off. The second shell (level 3)
 // still jumps with the sweeps, a cell that changes level being fitted through other cells (their
-// cascade), and changes by round-off with the smooth band fit, which fits every cell of psi's band
-// through the solid alone.
+// cascade), and changes to first order in the margin's step with the smooth band fit wherever its
+// single fit through the solid is trusted whole (about two thirds of that shell).
 TEST(MapExtrapolation, ACellLeavingTheSolidChangesTheExtensionContinuously) {
   const Map probe(false);
   const HostCells level = on_host(probe.level);
